@@ -1,0 +1,75 @@
+"""`PendingResponse`: what reactions ask of one sprite this frame, combined without regard to order.
+
+Reactions never move a sprite; they add displacement shifts and velocity changes (summed with
+`math.fsum`, which is exact and so independent of the order of terms) and bound the final position
+and velocity per axis (intervals intersected, also order-free). The sprite's update applies the
+result once. This is the seed's "soft" setting, made safe for several contacts in one frame.
+"""
+
+from __future__ import annotations
+
+import math
+
+AXES = (0, 1)  # 0 = x (right), 1 = y (down)
+
+
+class PendingResponse:
+    """Accumulated reaction results for one sprite and one frame; see the module docstring."""
+
+    __slots__ = ("shifts", "velocity_changes", "position_bounds", "velocity_bounds")
+
+    def __init__(self) -> None:
+        self.shifts: tuple[list[float], list[float]] = ([], [])
+        self.velocity_changes: tuple[list[float], list[float]] = ([], [])
+        self.position_bounds = [[-math.inf, math.inf], [-math.inf, math.inf]]
+        self.velocity_bounds = [[-math.inf, math.inf], [-math.inf, math.inf]]
+
+    def reset(self) -> None:
+        """Forget this frame's requests."""
+        for axis in AXES:
+            self.shifts[axis].clear()
+            self.velocity_changes[axis].clear()
+            self.position_bounds[axis][:] = (-math.inf, math.inf)
+            self.velocity_bounds[axis][:] = (-math.inf, math.inf)
+
+    def shift(self, axis: int, pixels: float) -> None:
+        """Move the sprite `pixels` further along `axis` this frame, on top of its increment."""
+        if pixels != 0.0:
+            self.shifts[axis].append(pixels)
+
+    def change_velocity(self, axis: int, delta: float) -> None:
+        """Change the sprite's persistent velocity along `axis` by `delta` px/ms."""
+        if delta != 0.0:
+            self.velocity_changes[axis].append(delta)
+
+    def bound_position(self, axis: int, low: float = -math.inf, high: float = math.inf) -> None:
+        """Keep the sprite's final coordinate (left or top edge, px) inside [low, high]."""
+        bounds = self.position_bounds[axis]
+        bounds[0] = max(bounds[0], low)
+        bounds[1] = min(bounds[1], high)
+
+    def bound_velocity(self, axis: int, low: float = -math.inf, high: float = math.inf) -> None:
+        """Keep the sprite's final velocity along `axis` (px/ms) inside [low, high]."""
+        bounds = self.velocity_bounds[axis]
+        bounds[0] = max(bounds[0], low)
+        bounds[1] = min(bounds[1], high)
+
+    def resolve(
+        self, axis: int, position: float, increment: float, velocity: float
+    ) -> tuple[float, float]:
+        """The final (coordinate, velocity) along `axis` given this frame's start and increment."""
+        new_position = _within(
+            math.fsum([position, increment, *self.shifts[axis]]), self.position_bounds[axis]
+        )
+        new_velocity = _within(
+            math.fsum([velocity, *self.velocity_changes[axis]]), self.velocity_bounds[axis]
+        )
+        return new_position, new_velocity
+
+
+def _within(value: float, bounds: list[float]) -> float:
+    """Clamp into [low, high]; contradicting bounds (a sprite squeezed both ways) meet halfway."""
+    low, high = bounds
+    if low > high:
+        return 0.5 * (low + high)
+    return min(max(value, low), high)

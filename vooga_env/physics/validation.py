@@ -1,0 +1,59 @@
+"""Argument checks shared by the engine: bad input fails where it is given, naming the argument."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+
+def finite(name: str, value: Any) -> float:
+    """Return `value` as a float, or raise naming `name` if it is not a finite number."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise TypeError(f"{name} must be a number, got {value!r} ({type(value).__name__})")
+    value = float(value)
+    if not math.isfinite(value):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    return value
+
+
+def positive(name: str, value: Any) -> float:
+    """A finite number > 0 (sizes, elapsed times)."""
+    value = finite(name, value)
+    if value <= 0.0:
+        raise ValueError(f"{name} must be > 0, got {value!r}")
+    return value
+
+
+def non_negative(name: str, value: Any) -> float:
+    """A finite number >= 0 (speeds, distances)."""
+    value = finite(name, value)
+    if value < 0.0:
+        raise ValueError(f"{name} must be >= 0, got {value!r}")
+    return value
+
+
+def mass(name: str, value: Any) -> float:
+    """A mass: a finite number > 0, or math.inf for a sprite no reaction can move."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and value == math.inf:
+        return math.inf
+    return positive(name, value)
+
+
+class Checked:
+    """An attribute validated on every assignment, so a bad value fails where it is set."""
+
+    def __init__(self, check: Callable[[str, Any], Any]) -> None:
+        self.check = check
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name = name
+        self.slot = "_" + name
+
+    def __get__(self, obj: object, owner: type | None = None) -> Any:
+        if obj is None:
+            return self
+        return getattr(obj, self.slot)
+
+    def __set__(self, obj: object, value: Any) -> None:
+        setattr(obj, self.slot, self.check(self.name, value))
