@@ -1,0 +1,34 @@
+"""The action table shared by both fighters: one `Discrete(len(Action))` action per env step.
+
+Left and right are in the fighter's own mirrored frame (for `fighter_1` they are swapped), matching
+the mirrored observations, so one policy can play either seat.
+"""
+
+from __future__ import annotations
+
+import enum
+
+
+class Action(enum.IntEnum):
+    """What a fighter does this step (the action repeats for each of the step's physics frames)."""
+
+    IDLE = 0
+    LEFT = 1  # walk (also steers in the air)
+    RIGHT = 2
+    JUMP = 3  # an impulse from the ground, or one of the air jumps; press again to jump again
+    JUMP_LEFT = 4
+    JUMP_RIGHT = 5
+    DOWN = 6  # crouch on the ground (ducks high attacks), fast-fall in the air
+    PUNCH = 7  # fast, short, light
+    KICK = 8  # slower, longer, low, more knockback
+    BLOCK = 9  # on the ground, facing the attacker: cuts damage and knockback; no moving
+
+
+WALK = {
+    Action.LEFT: -1.0,
+    Action.RIGHT: 1.0,
+    Action.JUMP_LEFT: -1.0,
+    Action.JUMP_RIGHT: 1.0,
+}
+JUMPS = frozenset({Action.JUMP, Action.JUMP_LEFT, Action.JUMP_RIGHT})
+ATTACKS = {Action.PUNCH: "punch", Action.KICK: "kick"}

@@ -1,0 +1,345 @@
+"""Fight configuration: frozen dataclasses loaded from TOML files in `configs/`, validated on load.
+
+`load_config("water", max_cycles=500)` takes a name from `configs/` (or a path to a .toml file)
+plus keyword overrides (nested tables as dicts: `physics={"gravity": 0.003}`). An unknown key, a
+wrong type or an impossible arena raises `ConfigError` naming the source and the key.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import sys
+import typing
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+# An installed wheel carries configs/ inside the package; a source checkout has it beside it.
+_HERE = Path(__file__).resolve().parent
+CONFIG_DIR = next(
+    (path for path in (_HERE / "configs", _HERE.parent / "configs") if path.is_dir()),
+    _HERE.parent / "configs",
+)
+
+REACTIONS = ("push", "momentum", "stop", "punch", "rebound", "force", "none")
+
+
+class ConfigError(ValueError):
+    """A configuration that cannot be used; the message names the source, the key and the value."""
+
+
+@dataclass(frozen=True)
+class Block:
+    """One platform block of the stage: top-left corner and size (px)."""
+
+    x: float
+    y: float
+    width: float
+    height: float
+
+
+@dataclass(frozen=True)
+class ArenaConfig:
+    """The arena's bounds and the stage: left, right and top bounds rebound; the bottom is open.
+
+    `spawns` holds each fighter's spawn x (the left edge, px); fighters spawn standing on the
+    highest block under them. `spawn_jitter` (px) moves each spawn by a seeded random amount.
+    """
+
+    width: float = 800.0
+    height: float = 480.0
+    blocks: tuple[Block, ...] = (Block(120.0, 360.0, 560.0, 40.0),)
+    spawns: tuple[float, ...] = (240.0, 520.0)
+    spawn_jitter: float = 0.0
+
+
+@dataclass(frozen=True)
+class PhysicsConfig:
+    """The engine's factors (see FightPhysicsEngine) and the physics frame's length."""
+
+    gravity: float = 0.002
+    background_factor: float = 1.0
+    speed_factor: float = 0.5
+    out_bound_distance: float = 1.0
+    frame_time: float = 20.0
+    ground_friction: float = 0.0015
+
+
+@dataclass(frozen=True)
+class AttackConfig:
+    """One attack: frame counts, damage and knockback, and its hitbox relative to the attacker.
+
+    The hitbox sticks out of the attacker's front edge, `offset_y` px below its top.
+    Knockback (px/ms) = `knockback + knockback_growth * damage already taken`, launched `angle`
+    degrees above the horizontal, in the attacker's facing direction.
+    """
+
+    startup: int = 2
+    active: int = 2
+    recovery: int = 4
+    damage: float = 4.0
+    knockback: float = 0.25
+    knockback_growth: float = 0.006
+    angle: float = 30.0
+    hitstun: int = 8
+    hitbox_width: float = 28.0
+    hitbox_height: float = 12.0
+    offset_y: float = 8.0
+
+
+@dataclass(frozen=True)
+class FighterConfig:
+    """A fighter's body and moves. Speeds in px/ms; frame counts in physics frames."""
+
+    width: float = 40.0
+    height: float = 60.0
+    crouch_height: float = 38.0
+    mass: float = 200.0
+    speed: float = 0.5
+    health: float = 100.0
+    jump_speed: float = 0.75
+    air_jumps: int = 1
+    fast_fall_speed: float = 0.9
+    block_damage: float = 0.2
+    block_knockback: float = 0.25
+    punch: AttackConfig = AttackConfig()
+    kick: AttackConfig = AttackConfig(
+        startup=4,
+        active=3,
+        recovery=8,
+        damage=7.0,
+        knockback=0.4,
+        knockback_growth=0.009,
+        angle=40.0,
+        hitstun=12,
+        hitbox_width=40.0,
+        hitbox_height=16.0,
+        offset_y=36.0,
+    )
+
+
+@dataclass(frozen=True)
+class RewardConfig:
+    """Reward weights. Zero-sum unless `time_penalty` is set (it is charged to both fighters).
+
+    Per step: `damage` * (damage dealt - damage taken) / health, `ring_out` for ringing the
+    opponent out (minus for being rung out), `ko` likewise for a knock-out, minus `time_penalty`.
+    """
+
+    damage: float = 1.0
+    ring_out: float = 5.0
+    ko: float = 5.0
+    time_penalty: float = 0.0
+
+
+@dataclass(frozen=True)
+class CollisionConfig:
+    """Which reaction each collision kind runs: one of REACTIONS."""
+
+    enemy: str = "push"
+    neutral: str = "rebound"
+    friends: str = "momentum"
+
+
+@dataclass(frozen=True)
+class FightConfig:
+    """Everything a fight needs; `max_cycles` env steps, each `frame_skip` physics frames."""
+
+    arena: ArenaConfig = ArenaConfig()
+    physics: PhysicsConfig = PhysicsConfig()
+    fighter: FighterConfig = FighterConfig()
+    rewards: RewardConfig = RewardConfig()
+    collisions: CollisionConfig = CollisionConfig()
+    max_cycles: int = 900
+    frame_skip: int = 2
+    stocks: int = 1
+    name: str = "default"
+
+    def replace(self, **changes: Any) -> FightConfig:
+        """A copy with top-level or nested (dict) changes, validated like a loaded file."""
+        return _build(FightConfig, _merge(_as_dict(self), changes), "overrides")
+
+
+def load_config(config: str | Path | FightConfig = "default", **overrides: Any) -> FightConfig:
+    """A FightConfig from a name in configs/, a .toml path or a FightConfig, plus overrides."""
+    if isinstance(config, FightConfig):
+        return config.replace(**overrides) if overrides else config
+    if not isinstance(config, (str, Path)):
+        raise ConfigError(f"config must be a name, a path or a FightConfig, got {config!r}")
+    path = Path(config)
+    if path.suffix != ".toml":
+        path = CONFIG_DIR / f"{config}.toml"
+        if not path.is_file():
+            known = sorted(p.stem for p in CONFIG_DIR.glob("*.toml"))
+            raise ConfigError(f"unknown config {str(config)!r}; known: {', '.join(known)}")
+    try:
+        with path.open("rb") as file:
+            data = tomllib.load(file)
+    except OSError as error:
+        raise ConfigError(f"cannot read config file {path}: {error}") from None
+    except tomllib.TOMLDecodeError as error:
+        raise ConfigError(f"{path}: not valid TOML: {error}") from None
+    data.setdefault("name", path.stem)
+    source = f"{path} with overrides {overrides}" if overrides else str(path)
+    return _build(FightConfig, _merge(data, overrides), source)
+
+
+def _merge(base: Mapping[str, Any], changes: Mapping[str, Any]) -> dict[str, Any]:
+    merged = dict(base)
+    for key, value in changes.items():
+        if isinstance(value, Mapping) and isinstance(merged.get(key), Mapping):
+            merged[key] = _merge(merged[key], value)
+        else:
+            merged[key] = value
+    return merged
+
+
+def _as_dict(config: Any) -> Any:
+    if dataclasses.is_dataclass(config):
+        return {f.name: _as_dict(getattr(config, f.name)) for f in dataclasses.fields(config)}
+    if isinstance(config, tuple):
+        return [_as_dict(item) for item in config]
+    return config
+
+
+def _build(cls: type, data: Any, source: str, prefix: str = "") -> Any:
+    """Build dataclass `cls` from `data`, checking every key and type; then check the whole."""
+    if dataclasses.is_dataclass(data) and isinstance(data, cls):
+        data = _as_dict(data)
+    if not isinstance(data, Mapping):
+        raise ConfigError(f"{source}: {prefix or 'config'} must be a table, got {data!r}")
+    hints = typing.get_type_hints(cls)
+    names = [f.name for f in dataclasses.fields(cls)]
+    for key in data:
+        if key not in names:
+            raise ConfigError(
+                f"{source}: unknown key {prefix + str(key)!r}; allowed: {', '.join(names)}"
+            )
+    values = {}
+    for name in names:
+        if name in data:
+            values[name] = _convert(hints[name], data[name], source, prefix + name)
+    built = cls(**values)
+    _check(built, source, prefix)
+    return built
+
+
+def _convert(hint: Any, value: Any, source: str, key: str) -> Any:
+    origin = typing.get_origin(hint)
+    if dataclasses.is_dataclass(hint):
+        return _build(hint, value, source, key + ".")
+    if origin is tuple:
+        if not isinstance(value, (list, tuple)):
+            raise ConfigError(f"{source}: {key} must be a list, got {value!r}")
+        item_hint = typing.get_args(hint)[0]
+        return tuple(
+            _convert(item_hint, item, source, f"{key}[{index}]") for index, item in enumerate(value)
+        )
+    if hint is float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise ConfigError(f"{source}: {key} must be a finite number, got {value!r}")
+        return float(value)
+    if hint is int:
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise ConfigError(f"{source}: {key} must be an integer, got {value!r}")
+        return value
+    if hint is str:
+        if not isinstance(value, str):
+            raise ConfigError(f"{source}: {key} must be a string, got {value!r}")
+        return value
+    raise TypeError(f"unsupported config type {hint}")  # pragma: no cover
+
+
+def _fail(source: str, key: str, value: Any, allowed: str) -> None:
+    raise ConfigError(f"{source}: {key} = {value!r} is not allowed: {allowed}")
+
+
+_POSITIVE = {
+    ArenaConfig: ("width", "height"),
+    Block: ("width", "height"),
+    PhysicsConfig: ("background_factor", "frame_time"),
+    AttackConfig: ("hitbox_width", "hitbox_height"),
+    FighterConfig: ("width", "height", "crouch_height", "mass", "health"),
+    FightConfig: ("max_cycles", "frame_skip", "stocks"),
+}
+_NON_NEGATIVE = {
+    ArenaConfig: ("spawn_jitter",),
+    PhysicsConfig: ("speed_factor", "out_bound_distance", "ground_friction"),
+    AttackConfig: ("startup", "recovery", "damage", "knockback", "knockback_growth", "hitstun"),
+    FighterConfig: ("speed", "jump_speed", "air_jumps", "fast_fall_speed", "block_damage",
+                    "block_knockback"),
+    RewardConfig: ("damage", "ring_out", "ko", "time_penalty"),
+}
+
+
+def _check(config: Any, source: str, prefix: str) -> None:
+    """Range checks per field, then what only the whole can tell (an impossible arena)."""
+    for name in _POSITIVE.get(type(config), ()):
+        if getattr(config, name) <= 0:
+            _fail(source, prefix + name, getattr(config, name), "must be > 0")
+    for name in _NON_NEGATIVE.get(type(config), ()):
+        if getattr(config, name) < 0:
+            _fail(source, prefix + name, getattr(config, name), "must be >= 0")
+    if isinstance(config, AttackConfig) and config.active < 1:
+        _fail(source, prefix + "active", config.active, "an attack needs at least 1 active frame")
+    if isinstance(config, FighterConfig) and config.crouch_height > config.height:
+        _fail(source, prefix + "crouch_height", config.crouch_height,
+              f"must be <= height ({config.height})")
+    if isinstance(config, CollisionConfig):
+        for name in ("enemy", "neutral", "friends"):
+            if getattr(config, name) not in REACTIONS:
+                _fail(source, prefix + name, getattr(config, name), f"one of {', '.join(REACTIONS)}")
+    if isinstance(config, FightConfig):
+        _check_arena(config, source)
+
+
+def _check_arena(config: FightConfig, source: str) -> None:
+    arena, fighter = config.arena, config.fighter
+    if not arena.blocks:
+        _fail(source, "arena.blocks", [], "the stage needs at least one block")
+    for index, block in enumerate(arena.blocks):
+        if block.x < 0 or block.x + block.width > arena.width or block.y < 0 or (
+            block.y + block.height > arena.height
+        ):
+            _fail(source, f"arena.blocks[{index}]", block,
+                  f"must lie inside the {arena.width:g}x{arena.height:g} arena")
+    stage_left = min(block.x for block in arena.blocks)
+    stage_right = max(block.x + block.width for block in arena.blocks)
+    if stage_left <= 0 and stage_right >= arena.width:
+        _fail(source, "arena.blocks", arena.blocks,
+              "the stage must be narrower than the arena, or nobody can be rung out")
+    if len(arena.spawns) != 2:
+        _fail(source, "arena.spawns", arena.spawns, "exactly two spawn x positions")
+    margin = config.physics.out_bound_distance
+    for index, x in enumerate(arena.spawns):
+        key = f"arena.spawns[{index}]"
+        if x - arena.spawn_jitter < margin or x + fighter.width + arena.spawn_jitter > arena.width - margin:
+            _fail(source, key, x, "the fighter (with jitter) must spawn inside the arena's bounds")
+        if spawn_block(arena, x, fighter.width) is None:
+            _fail(source, key, x, "the fighter must spawn above a block of the stage")
+        top = spawn_block(arena, x, fighter.width).y - fighter.height
+        if top < 0:
+            _fail(source, key, x, "the fighter is too tall to stand on the block under it")
+        for block_index, block in enumerate(arena.blocks):
+            if _overlaps(x, top, fighter.width, fighter.height, block):
+                _fail(source, key, x, f"the fighter would spawn inside arena.blocks[{block_index}]")
+
+
+def spawn_block(arena: ArenaConfig, x: float, width: float) -> Block | None:
+    """The highest block under a fighter whose left edge is at `x`, or None."""
+    under = [block for block in arena.blocks if block.x < x + width and x < block.x + block.width]
+    return min(under, key=lambda block: block.y, default=None)
+
+
+def _overlaps(x: float, y: float, width: float, height: float, block: Block) -> bool:
+    return x < block.x + block.width and block.x < x + width and y < block.y + block.height and (
+        block.y < y + height
+    )
+

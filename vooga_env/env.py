@@ -1,0 +1,224 @@
+"""The two-fighter PettingZoo ParallelEnv, and the module-level `env`/`parallel_env` factories."""
+
+from __future__ import annotations
+
+import functools
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from gymnasium import spaces
+from gymnasium.utils import seeding
+from pettingzoo import ParallelEnv
+from pettingzoo.utils import parallel_to_aec
+from pettingzoo.utils.env import AECEnv
+
+from vooga_env.actions import Action
+from vooga_env.config import FightConfig, load_config
+from vooga_env.fight import Fight
+from vooga_env.observations import HIGH, LOW, OBSERVATION_SIZE, observe
+from vooga_env.rewards import HitAndRingOutReward, RewardFn
+
+AGENTS = ("fighter_0", "fighter_1")
+
+
+class FightParallelEnv(ParallelEnv):
+    """Two fighters on a stage; knock the other off it, or out.
+
+    ## Action Space
+    `Discrete(10)` per fighter, the same for both (`vooga_env.actions.Action`): 0 idle, 1 left,
+    2 right, 3 jump, 4 jump left, 5 jump right, 6 down (crouch / fast-fall), 7 punch, 8 kick,
+    9 block. Left and right are in the fighter's own mirrored frame (swapped for `fighter_1`). Each
+    action is repeated for `frame_skip` physics frames of `frame_time` ms.
+
+    ## Observation Space
+    `Box(-2, 2, (37,), float32)`, ego-centric and mirrored (`vooga_env.observations`): 17 features
+    of the fighter itself (x, y, vx, vy, facing, health, damage_taken, on_ground, jumps_left,
+    punching, kicking, blocking, crouching, move_progress, hitbox_active, hitstun, stocks), the same
+    17 of the opponent (its x and y relative to the fighter's), then the distances to the stage's
+    left and right edges and the fraction of time left. `OBSERVATION_NAMES` names every index.
+
+    ## Rewards
+    Per step (`configs/*.toml` [rewards]): `damage` * (damage dealt - damage taken) / max health,
+    `+ring_out` for ringing the opponent out and `-ring_out` for being rung out, `ko` likewise for
+    knock-outs, minus `time_penalty`. Zero-sum by default. `infos` carry the step's events
+    (hits landed, damage dealt and taken, ring-out, KO) and, at the end, the `winner`.
+
+    ## Episode End
+    Both fighters terminate in the same step when one loses its last stock (a ring-out: falling
+    wholly below the arena; or a KO: health 0). Both truncate after `max_cycles` steps.
+
+    ## Arguments
+    `config` (a name from `configs/`, a .toml path or a FightConfig), `render_mode` ("human" or
+    "rgb_array"), `reward_fn` (called with the fight and the step's events), and any config key as a
+    keyword override: `max_cycles`, `frame_skip`, `stocks`, or a table such as
+    `physics={"gravity": 0.003}`.
+
+    ## Version History
+    v0: first release.
+    """
+
+    metadata = {
+        "name": "vooga_fight_v0",
+        "render_modes": ["human", "rgb_array"],
+        "render_fps": 25,
+        "is_parallelizable": True,
+    }
+
+    def __init__(
+        self,
+        config: str | Path | FightConfig = "default",
+        render_mode: str | None = None,
+        reward_fn: RewardFn | None = None,
+        **overrides: Any,
+    ) -> None:
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(
+                f"render_mode must be one of {self.metadata['render_modes']} or None, "
+                f"got {render_mode!r}"
+            )
+        self.config = load_config(config, **overrides)
+        self.render_mode = render_mode
+        self.reward_fn = reward_fn or HitAndRingOutReward(self.config.rewards)
+        self.fight = Fight(self.config)
+        self.possible_agents = list(AGENTS)
+        self.agents: list[str] = []
+        self.metadata = {
+            **self.metadata,
+            "render_fps": round(1000.0 / (self.config.physics.frame_time * self.config.frame_skip)),
+        }
+        self._np_random, _ = seeding.np_random(None)
+        self._observation_space = spaces.Box(LOW, HIGH, (OBSERVATION_SIZE,), np.float32)
+        self._action_space = spaces.Discrete(len(Action))
+        self.state_space = spaces.Box(LOW, HIGH, (2 * OBSERVATION_SIZE,), np.float32)
+        self._viewer = None
+
+    @functools.lru_cache(maxsize=None)  # noqa: B019 - PettingZoo wants the same object every call
+    def observation_space(self, agent: str) -> spaces.Box:
+        self._check_agent(agent)
+        return self._observation_space
+
+    @functools.lru_cache(maxsize=None)  # noqa: B019
+    def action_space(self, agent: str) -> spaces.Discrete:
+        self._check_agent(agent)
+        return self._action_space
+
+    def reset(
+        self, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[dict[str, np.ndarray], dict[str, dict[str, Any]]]:
+        if seed is not None:
+            if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+                raise ValueError(f"seed must be a non-negative int or None, got {seed!r}")
+            self._np_random, _ = seeding.np_random(int(seed))
+        self.fight.reset(self._np_random)
+        self.agents = list(self.possible_agents)
+        observations = self._observations()
+        infos = {agent: self._info(index) for index, agent in enumerate(self.possible_agents)}
+        if self.render_mode == "human":
+            self.render()
+        return observations, infos
+
+    def step(self, actions: dict[str, Any]) -> tuple[dict, dict, dict, dict, dict]:
+        if not self.agents:
+            raise RuntimeError("step() called on a finished episode; call reset() first")
+        chosen = self._read_actions(actions)
+        events = self.fight.step(chosen)
+        rewards = self.reward_fn(self.fight, events)
+        terminated = events.over
+        truncated = not terminated and self.fight.steps >= self.config.max_cycles
+        observations = self._observations()
+        agents = self.possible_agents
+        infos = {}
+        for index, agent in enumerate(agents):
+            info = self._info(index)
+            info.update(
+                hits_landed=sum(hit.attacker == index and not hit.blocked for hit in events.hits),
+                hits_blocked=sum(hit.defender == index and hit.blocked for hit in events.hits),
+                damage_dealt=events.damage_dealt[index],
+                damage_taken=events.damage_taken[index],
+                rung_out=events.rung_out[index],
+                knocked_out=events.knocked_out[index],
+            )
+            if terminated or truncated:
+                winner = self.fight.winner()
+                info["winner"] = "draw" if winner is None else agents[winner]
+            infos[agent] = info
+        result = (
+            observations,
+            {agent: float(rewards[index]) for index, agent in enumerate(agents)},
+            {agent: terminated for agent in agents},
+            {agent: truncated for agent in agents},
+            infos,
+        )
+        if terminated or truncated:
+            self.agents = []
+        if self.render_mode == "human":
+            self.render()
+        return result
+
+    def state(self) -> np.ndarray:
+        """Both fighters' observations, fighter_0's first."""
+        return np.concatenate([observe(self.fight, 0), observe(self.fight, 1)])
+
+    def render(self) -> np.ndarray | None:
+        if self.render_mode is None:
+            return None
+        if self._viewer is None:
+            from vooga_env.render import Viewer
+
+            self._viewer = Viewer(self.fight, self.render_mode, self.metadata["render_fps"])
+        return self._viewer.draw()
+
+    def close(self) -> None:
+        if self._viewer is not None:
+            self._viewer.close()
+            self._viewer = None
+
+    def _observations(self) -> dict[str, np.ndarray]:
+        return {agent: observe(self.fight, i) for i, agent in enumerate(self.possible_agents)}
+
+    def _info(self, index: int) -> dict[str, Any]:
+        fighter = self.fight.fighters[index]
+        return {"health": fighter.health, "stocks": fighter.stocks}
+
+    def _read_actions(self, actions: dict[str, Any]) -> tuple[int, int]:
+        if not isinstance(actions, dict):
+            raise TypeError(f"actions must be a dict keyed by agent, got {actions!r}")
+        unknown = set(actions) - set(self.possible_agents)
+        if unknown:
+            raise KeyError(f"actions for unknown agents {sorted(unknown)}; agents: {self.agents}")
+        chosen = []
+        for agent in self.possible_agents:
+            if agent not in actions:
+                raise KeyError(f"no action for {agent!r}; every live agent needs one")
+            chosen.append(_action_index(agent, actions[agent]))
+        return chosen[0], chosen[1]
+
+    def _check_agent(self, agent: str) -> None:
+        if agent not in self.possible_agents:
+            raise KeyError(f"unknown agent {agent!r}; agents: {self.possible_agents}")
+
+
+def _action_index(agent: str, action: Any) -> int:
+    """The action as a plain int, or a clear error naming the agent and the value."""
+    value = action
+    if isinstance(action, np.ndarray) and action.shape == ():
+        value = action.item()
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"action for {agent} must be an int in 0..{len(Action) - 1}, got {action!r}")
+    if not 0 <= value < len(Action):
+        raise ValueError(f"action for {agent} must be in 0..{len(Action) - 1}, got {action!r}")
+    return int(value)
+
+
+def parallel_env(**kwargs: Any) -> FightParallelEnv:
+    """The ParallelEnv (see FightParallelEnv for the arguments)."""
+    return FightParallelEnv(**kwargs)
+
+
+def env(**kwargs: Any) -> AECEnv:
+    """The same fight as an AEC env (PettingZoo's `parallel_to_aec`)."""
+    return parallel_to_aec(parallel_env(**kwargs))
+
+
+raw_env = parallel_env

@@ -1,0 +1,261 @@
+"""`Fight`: two fighters on a stage, the rules of the game over the physics engine.
+
+No gymnasium or pettingzoo here: the env (`env.py`) turns this into observations and rewards.
+Each `step` takes one action per fighter (in its own mirrored frame) and runs `frame_skip` physics
+frames with the actions repeated; it returns what happened as `StepEvents`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from vooga_env.actions import ATTACKS, JUMPS, WALK, Action
+from vooga_env.config import FightConfig, spawn_block
+from vooga_env.hits import Fighter, Hit, ReactionHit, hit_kind
+from vooga_env.physics import (
+    CollisionKind,
+    CollisionKindEnemy,
+    CollisionKindFriends,
+    CollisionKindNeutral,
+    FightPhysicsEngine,
+    MotionAction,
+    PlatformBlock,
+    Reaction,
+    ReactionForce,
+    ReactionMomentumConservation,
+    ReactionPunch,
+    ReactionPush,
+    ReactionRebound,
+    ReactionStop,
+    SpriteGroupTemplate,
+    World,
+)
+
+SIDES = (1.0, -1.0)  # fighter_1's left and right are mirrored
+
+
+def make_reaction(name: str, friction: float = 0.0) -> list[Reaction]:
+    """The reactions a config name stands for (see config.REACTIONS)."""
+    return {
+        "push": [ReactionPush()],
+        "momentum": [ReactionMomentumConservation()],
+        "stop": [ReactionStop()],
+        "punch": [ReactionPunch()],
+        "rebound": [ReactionRebound(friction=friction)],
+        "force": [ReactionForce()],
+        "none": [],
+    }[name]
+
+
+@dataclass
+class StepEvents:
+    """What happened during one env step, per fighter index."""
+
+    hits: list[Hit] = field(default_factory=list)
+    damage_dealt: list[float] = field(default_factory=lambda: [0.0, 0.0])
+    damage_taken: list[float] = field(default_factory=lambda: [0.0, 0.0])
+    rung_out: list[bool] = field(default_factory=lambda: [False, False])
+    knocked_out: list[bool] = field(default_factory=lambda: [False, False])
+    over: bool = False
+
+
+class Fight:
+    """The game: stage, fighters, attacks, stocks; stepped by actions, reset by a seeded RNG."""
+
+    def __init__(self, config: FightConfig) -> None:
+        self.config = config
+        arena, physics = config.arena, config.physics
+        self.engine = FightPhysicsEngine(
+            arena.width,
+            arena.height,
+            background_factor=physics.background_factor,
+            out_bound_distance=physics.out_bound_distance,
+            speed_factor=physics.speed_factor,
+            gravity=physics.gravity,
+        )
+        self.blocks = [
+            PlatformBlock(b.x, b.y, b.width, b.height, name=f"block_{i}")
+            for i, b in enumerate(arena.blocks)
+        ]
+        self.fighters = [Fighter(i, config.fighter, 0.0, 0.0) for i in (0, 1)]
+        self.hit_reaction = ReactionHit()
+        collisions = config.collisions
+        kinds: list[CollisionKind] = [
+            hit_kind(self.hit_reaction),
+            CollisionKindEnemy(make_reaction(collisions.enemy)),
+            CollisionKindFriends(make_reaction(collisions.friends)),
+            CollisionKindNeutral(make_reaction(collisions.neutral, physics.ground_friction)),
+        ]
+        group = SpriteGroupTemplate()
+        group.add_platform_block_array(self.blocks)
+        for fighter in self.fighters:
+            group.add_sprite_array([fighter, fighter.hitbox])
+        self.world = World(self.engine, group, kinds)
+        self.stage_left = min(block.left for block in self.blocks)
+        self.stage_right = max(block.right for block in self.blocks)
+        self.frame = 0
+        self.steps = 0
+        self.spawns = [0.0, 0.0]
+
+    def reset(self, rng: np.random.Generator) -> None:
+        """Start a new fight: full stocks and health, spawns jittered by `rng`."""
+        jitter = self.config.arena.spawn_jitter
+        self.spawns = [
+            x + (float(rng.uniform(-jitter, jitter)) if jitter > 0 else 0.0)
+            for x in self.config.arena.spawns
+        ]
+        for fighter in self.fighters:
+            fighter.stocks = self.config.stocks
+            self._respawn(fighter)
+        self.frame = 0
+        self.steps = 0
+
+    def step(self, actions: tuple[int, int]) -> StepEvents:
+        """Run one env step (frame_skip physics frames) with each fighter's action repeated."""
+        events = StepEvents()
+        for _ in range(self.config.frame_skip):
+            self._frame(actions, events)
+            if events.over:
+                break
+        self.steps += 1
+        return events
+
+    @property
+    def over(self) -> bool:
+        return any(fighter.stocks <= 0 for fighter in self.fighters)
+
+    def winner(self) -> int | None:
+        """The leading fighter's index (more stocks, then more health), None for a draw."""
+        scores = [(fighter.stocks, fighter.health) for fighter in self.fighters]
+        if scores[0] == scores[1]:
+            return None
+        return 0 if scores[0] > scores[1] else 1
+
+    def _frame(self, actions: tuple[int, int], events: StepEvents) -> None:
+        motions = []
+        for fighter, action in zip(self.fighters, actions):
+            motions.extend(self._control(fighter, Action(action)))
+        for fighter in self.fighters:
+            self._place_hitbox(fighter)
+        self.hit_reaction.hits.clear()
+        contacts = self.world.step(self.config.physics.frame_time, motions)
+        grounded = {
+            contact.other if isinstance(contact.sprite, PlatformBlock) else contact.sprite
+            for contact in contacts
+            if isinstance(contact.sprite, PlatformBlock) and contact.edge == "up"
+            or isinstance(contact.other, PlatformBlock) and contact.edge == "down"
+        }
+        for fighter in self.fighters:
+            fighter.on_ground = fighter in grounded
+            if fighter.on_ground:
+                fighter.jumps_left = fighter.config.air_jumps
+            self._advance(fighter)
+        for hit in sorted(self.hit_reaction.hits, key=lambda hit: hit.attacker):
+            self._apply_hit(hit, events)
+        self.frame += 1
+        for fighter in self.fighters:
+            rung_out = self.engine.is_out_down(fighter)
+            knocked_out = fighter.health <= 0.0
+            if rung_out or knocked_out:
+                events.rung_out[fighter.index] |= rung_out
+                events.knocked_out[fighter.index] |= knocked_out and not rung_out
+                fighter.stocks -= 1
+                if fighter.stocks > 0:
+                    self._respawn(fighter)
+        events.over = self.over
+
+    def _control(self, fighter: Fighter, action: Action) -> list[MotionAction]:
+        """Apply one fighter's action for this frame; the walking it asks for, as MotionActions."""
+        config = fighter.config
+        free = fighter.hitstun == 0 and fighter.move is None
+        opponent = self.fighters[1 - fighter.index]
+        if free:
+            toward = (opponent.x + opponent.width / 2) - (fighter.x + fighter.width / 2)
+            if toward != 0.0:
+                fighter.facing = 1.0 if toward > 0.0 else -1.0
+        fighter.blocking = free and action == Action.BLOCK and fighter.on_ground
+        self._crouch(fighter, free and action == Action.DOWN and fighter.on_ground)
+        jumping = action in JUMPS
+        motions = []
+        if free:
+            if jumping and not fighter.jump_held:
+                if fighter.on_ground:
+                    fighter.vy = -config.jump_speed
+                elif fighter.jumps_left > 0:
+                    fighter.jumps_left -= 1
+                    fighter.vy = -config.jump_speed
+            if action == Action.DOWN and not fighter.on_ground:
+                fighter.vy = max(fighter.vy, config.fast_fall_speed)
+            if action in ATTACKS:
+                fighter.move = ATTACKS[action]
+                fighter.move_frame = 0
+                fighter.hitbox.struck.clear()
+            if action in WALK:
+                motions.append(MotionAction(fighter, WALK[action] * SIDES[fighter.index], 0.0))
+        fighter.jump_held = jumping
+        return motions
+
+    def _crouch(self, fighter: Fighter, crouch: bool) -> None:
+        """Crouching lowers the fighter's top edge; its feet stay where they are."""
+        if crouch == fighter.crouching:
+            return
+        bottom = fighter.bottom
+        fighter.crouching = crouch
+        fighter.height = fighter.config.crouch_height if crouch else fighter.config.height
+        fighter.y = bottom - fighter.height
+
+    def _place_hitbox(self, fighter: Fighter) -> None:
+        """Put the hitbox in front of its owner during the attack's active frames."""
+        hitbox, attack = fighter.hitbox, fighter.attack
+        hitbox.active = attack is not None and (
+            attack.startup <= fighter.move_frame < attack.startup + attack.active
+        )
+        if hitbox.active:
+            hitbox.width = attack.hitbox_width
+            hitbox.height = attack.hitbox_height
+            hitbox.x = fighter.right if fighter.facing > 0 else fighter.left - attack.hitbox_width
+            hitbox.y = fighter.y + attack.offset_y
+
+    def _advance(self, fighter: Fighter) -> None:
+        """Count down stun and move frames after a physics frame."""
+        if fighter.hitstun > 0:
+            fighter.hitstun -= 1
+        attack = fighter.attack
+        if attack is not None:
+            fighter.move_frame += 1
+            if fighter.move_frame >= attack.startup + attack.active + attack.recovery:
+                fighter.move = None
+
+    def _apply_hit(self, hit: Hit, events: StepEvents) -> None:
+        defender = self.fighters[hit.defender]
+        attack = getattr(self.fighters[hit.attacker].config, hit.move)
+        defender.health = max(defender.health - hit.damage, 0.0)
+        defender.hitstun = attack.hitstun // 3 if hit.blocked else attack.hitstun
+        defender.move = None
+        defender.blocking = defender.blocking and hit.blocked
+        events.hits.append(hit)
+        events.damage_dealt[hit.attacker] += hit.damage
+        events.damage_taken[hit.defender] += hit.damage
+
+    def _respawn(self, fighter: Fighter) -> None:
+        """Back on the spawn point, standing, at full health, with no move or stun."""
+        config = fighter.config
+        x = self.spawns[fighter.index]
+        fighter.height = config.height
+        fighter.x = x
+        fighter.y = spawn_block(self.config.arena, x, config.width).y - config.height
+        fighter.vx = fighter.vy = 0.0
+        fighter.health = config.health
+        fighter.facing = SIDES[fighter.index]
+        fighter.jumps_left = config.air_jumps
+        fighter.on_ground = True
+        fighter.jump_held = False
+        fighter.move = None
+        fighter.move_frame = 0
+        fighter.hitstun = 0
+        fighter.blocking = False
+        fighter.crouching = False
+        fighter.hitbox.active = False
+        fighter.hitbox.struck.clear()

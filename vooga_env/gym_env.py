@@ -1,0 +1,85 @@
+"""`FightEnv`: the fight as a single-agent Gymnasium env, one fighter against a given opponent."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import gymnasium
+import numpy as np
+
+from vooga_env.config import FightConfig
+from vooga_env.env import AGENTS, FightParallelEnv
+from vooga_env.policies import Policy, make_policy
+
+
+class FightEnv(gymnasium.Env):
+    """One fighter (the learner) against an opponent policy; see FightParallelEnv for the fight.
+
+    ## Arguments
+    `opponent`: a scripted fighter's name (`idle`, `random`, `rush`, `turtle`, `zoner`,
+    `edge_guard`), a saved model path (.zip), any callable `obs -> action`, or an object with SB3's
+    `predict`. `seat`: 0 or 1 for the learner's side, or "random" to draw it each episode (the
+    observations and actions are mirrored, so a policy plays either side). Everything else goes to
+    `FightParallelEnv`: `config`, `render_mode`, `reward_fn`, and config overrides.
+
+    Observations, actions, rewards and infos are the learner's, as in the parallel env;
+    `info["opponent_action"]` says what the opponent did.
+    """
+
+    metadata = FightParallelEnv.metadata
+
+    def __init__(
+        self,
+        config: str | Path | FightConfig = "default",
+        opponent: Any = "random",
+        seat: int | str = 0,
+        render_mode: str | None = None,
+        **kwargs: Any,
+    ) -> None:
+        if seat not in (0, 1, "random"):
+            raise ValueError(f"seat must be 0, 1 or 'random', got {seat!r}")
+        self.fight_env = FightParallelEnv(config, render_mode=render_mode, **kwargs)
+        self.metadata = self.fight_env.metadata
+        self.render_mode = render_mode
+        self.opponent: Policy = make_policy(opponent)
+        self.seat_choice = seat
+        self.seat = 0 if seat == "random" else seat
+        self.observation_space = self.fight_env.observation_space(AGENTS[0])
+        self.action_space = self.fight_env.action_space(AGENTS[0])
+        self._opponent_observation: np.ndarray | None = None
+
+    @property
+    def config(self) -> FightConfig:
+        return self.fight_env.config
+
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]:
+        super().reset(seed=seed)
+        fight_seed = int(self.np_random.integers(2**31))
+        if self.seat_choice == "random":
+            self.seat = int(self.np_random.integers(2))
+        self.opponent.reset(int(self.np_random.integers(2**31)))
+        observations, infos = self.fight_env.reset(seed=fight_seed, options=options)
+        me, them = AGENTS[self.seat], AGENTS[1 - self.seat]
+        self._opponent_observation = observations[them]
+        return observations[me], {**infos[me], "seat": self.seat}
+
+    def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+        if self._opponent_observation is None:
+            raise RuntimeError("step() called before reset()")
+        me, them = AGENTS[self.seat], AGENTS[1 - self.seat]
+        opponent_action = int(self.opponent.act(self._opponent_observation))
+        observations, rewards, terminations, truncations, infos = self.fight_env.step(
+            {me: action, them: opponent_action}
+        )
+        self._opponent_observation = observations[them]
+        info = {**infos[me], "seat": self.seat, "opponent_action": opponent_action}
+        return observations[me], rewards[me], terminations[me], truncations[me], info
+
+    def render(self) -> np.ndarray | None:
+        return self.fight_env.render()
+
+    def close(self) -> None:
+        self.fight_env.close()

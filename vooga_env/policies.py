@@ -1,0 +1,243 @@
+"""Scripted fighters and the one policy interface every opponent is wrapped in.
+
+A policy maps a fighter's own observation to an action: `act(obs) -> int`, plus SB3's
+`predict(obs, state=None, episode_start=None, deterministic=True) -> (action, state)`, so a scripted
+fighter and a trained model stand in for each other. Scripted fighters read only their own
+(mirrored) observation and are deterministic given the seed passed to `reset`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from vooga_env.actions import Action
+from vooga_env.observations import OBSERVATION_NAMES
+
+_I = {name: index for index, name in enumerate(OBSERVATION_NAMES)}
+# Reach, as centre-to-centre x distance in half-arena widths (the observation's unit), on the
+# default fighter: the punch's hitbox reaches 68 px (0.17), the kick's 80 px (0.2).
+PUNCH_RANGE = 0.15
+KICK_RANGE = 0.19
+
+
+class Policy:
+    """Base of every policy: `act` one observation; `predict` does the same in SB3's shape."""
+
+    name = "policy"
+
+    def reset(self, seed: int | None = None) -> None:
+        """Start a new episode (scripted fighters reseed their randomness here)."""
+
+    def act(self, observation: np.ndarray) -> int:
+        raise NotImplementedError
+
+    def predict(
+        self,
+        observation: np.ndarray,
+        state: Any = None,
+        episode_start: Any = None,
+        deterministic: bool = True,
+    ) -> tuple[np.ndarray, Any]:
+        observation = np.asarray(observation)
+        if observation.ndim == 2:
+            return np.array([self.act(row) for row in observation]), state
+        return np.array(self.act(observation)), state
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}()"
+
+
+class Scripted(Policy):
+    """A scripted fighter with its own seeded random generator."""
+
+    def __init__(self, seed: int | None = None) -> None:
+        self.rng = np.random.default_rng(seed)
+
+    def reset(self, seed: int | None = None) -> None:
+        if seed is not None:
+            self.rng = np.random.default_rng(seed)
+
+
+class Idle(Scripted):
+    """Stands still: the floor of the ladder."""
+
+    name = "idle"
+
+    def act(self, observation: np.ndarray) -> int:
+        return int(Action.IDLE)
+
+
+class RandomFighter(Scripted):
+    """Uniformly random actions."""
+
+    name = "random"
+
+    def act(self, observation: np.ndarray) -> int:
+        return int(self.rng.integers(len(Action)))
+
+
+def _gap(observation: np.ndarray) -> float:
+    """Signed x distance to the opponent in own frame (half-arena widths; > 0: it is in front)."""
+    return float(observation[_I["opponent_x"]])
+
+
+def _toward(gap: float) -> int:
+    return Action.RIGHT if gap > 0 else Action.LEFT
+
+
+def _away(gap: float) -> int:
+    return Action.LEFT if gap > 0 else Action.RIGHT
+
+
+def _recover(observation: np.ndarray) -> int | None:
+    """Off the stage or falling beside it: head back towards the stage's centre."""
+    left = observation[_I["stage_left"]]
+    right = observation[_I["stage_right"]]
+    if left >= 0 and right >= 0:
+        return None
+    back = Action.RIGHT if left < 0 else Action.LEFT
+    falling = observation[_I["self_vy"]] > 0 and not observation[_I["self_on_ground"]]
+    if falling and observation[_I["self_jumps_left"]] > 0:
+        return Action.JUMP_RIGHT if back == Action.RIGHT else Action.JUMP_LEFT
+    return back
+
+
+class Rush(Scripted):
+    """Closes in and attacks: punches up close, kicks from a little further."""
+
+    name = "rush"
+
+    def act(self, observation: np.ndarray) -> int:
+        recover = _recover(observation)
+        if recover is not None:
+            return recover
+        gap = _gap(observation)
+        if abs(gap) < PUNCH_RANGE:
+            return Action.PUNCH
+        if abs(gap) < KICK_RANGE and self.rng.random() < 0.5:
+            return Action.KICK
+        return _toward(gap)
+
+
+class Turtle(Scripted):
+    """Stays at kick range and blocks; punishes an attack that missed or was blocked."""
+
+    name = "turtle"
+
+    def act(self, observation: np.ndarray) -> int:
+        recover = _recover(observation)
+        if recover is not None:
+            return recover
+        gap = _gap(observation)
+        if abs(gap) >= KICK_RANGE:
+            return _toward(gap)
+        attacking = observation[_I["opponent_punching"]] or observation[_I["opponent_kicking"]]
+        if attacking and observation[_I["opponent_move_progress"]] < 0.6:
+            return Action.BLOCK
+        if attacking or observation[_I["opponent_hitstun"]] > 0:
+            return Action.PUNCH if abs(gap) < PUNCH_RANGE else Action.KICK
+        if self.rng.random() < 0.7:
+            return Action.BLOCK
+        return Action.PUNCH if abs(gap) < PUNCH_RANGE else Action.KICK
+
+
+class Zoner(Scripted):
+    """Keeps the opponent at kick range: kicks when it steps in, backs off when it gets closer."""
+
+    name = "zoner"
+
+    def act(self, observation: np.ndarray) -> int:
+        recover = _recover(observation)
+        if recover is not None:
+            return recover
+        gap = _gap(observation)
+        behind = observation[_I["stage_left"]] if gap > 0 else observation[_I["stage_right"]]
+        if abs(gap) < PUNCH_RANGE and behind > 0.08:
+            return _away(gap)
+        if abs(gap) < KICK_RANGE:
+            return Action.KICK
+        return _toward(gap)
+
+
+class EdgeGuard(Scripted):
+    """Holds the centre: presses an opponent who stands between it and that side's edge.
+
+    Kicks (more knockback) when pressing, punches and blocks when it is the one near an edge.
+    """
+
+    name = "edge_guard"
+
+    def act(self, observation: np.ndarray) -> int:
+        recover = _recover(observation)
+        if recover is not None:
+            return recover
+        gap = _gap(observation)
+        own_offset = (observation[_I["stage_left"]] - observation[_I["stage_right"]]) / 2
+        opponent_offset = own_offset + gap / 2  # both in arena widths, > 0: right of centre
+        pressing = gap * opponent_offset > 0
+        if abs(gap) < KICK_RANGE:
+            attacking = observation[_I["opponent_punching"]] or observation[_I["opponent_kicking"]]
+            if attacking and not pressing:
+                return Action.BLOCK
+            return Action.KICK if pressing or abs(gap) >= PUNCH_RANGE else Action.PUNCH
+        if pressing or abs(own_offset) < 0.05:
+            return _toward(gap)
+        return Action.LEFT if own_offset > 0 else Action.RIGHT
+
+
+SCRIPTED: dict[str, type[Scripted]] = {
+    cls.name: cls for cls in (Idle, RandomFighter, Rush, Turtle, Zoner, EdgeGuard)
+}
+
+
+class CallablePolicy(Policy):
+    """Wraps any `obs -> action` callable."""
+
+    def __init__(self, function: Callable[[np.ndarray], Any]) -> None:
+        self.function = function
+        self.name = getattr(function, "__name__", "callable")
+
+    def act(self, observation: np.ndarray) -> int:
+        return int(self.function(observation))
+
+
+class PredictPolicy(Policy):
+    """Wraps an object with SB3's `predict` (a trained model), deterministic by default."""
+
+    def __init__(self, model: Any, name: str = "model", deterministic: bool = True) -> None:
+        self.model = model
+        self.name = name
+        self.deterministic = deterministic
+
+    def act(self, observation: np.ndarray) -> int:
+        action, _ = self.model.predict(observation, deterministic=self.deterministic)
+        return int(np.asarray(action).item())
+
+    def predict(self, observation, state=None, episode_start=None, deterministic=True):
+        return self.model.predict(observation, state, episode_start, deterministic)
+
+
+def make_policy(spec: str | Path | Policy | Callable | Any, seed: int | None = None) -> Policy:
+    """A Policy from a scripted name, a saved SB3 model (.zip), a Policy, a predict-er or a callable."""
+    if isinstance(spec, Policy):
+        return spec
+    if isinstance(spec, (str, Path)):
+        if str(spec) in SCRIPTED:
+            return SCRIPTED[str(spec)](seed)
+        path = Path(spec)
+        if path.suffix == ".zip" or path.with_suffix(".zip").is_file():
+            from vooga_env.models import load_model
+
+            return PredictPolicy(load_model(path), name=path.stem)
+        raise ValueError(
+            f"unknown policy {str(spec)!r}: use one of {', '.join(SCRIPTED)} or a saved model (.zip)"
+        )
+    if hasattr(spec, "predict"):
+        return PredictPolicy(spec, name=type(spec).__name__)
+    if callable(spec):
+        return CallablePolicy(spec)
+    raise TypeError(f"a policy must be a name, a model path, a callable or have predict(), got {spec!r}")
