@@ -10,7 +10,7 @@ import gymnasium
 
 from vooga_env.actions import Action
 from vooga_env.config import ConfigError, FightConfig, load_config
-from vooga_env.env import FightParallelEnv, env, parallel_env, raw_env
+from vooga_env.parallel import FightParallelEnv, env, parallel_env, raw_env
 from vooga_env.gym_env import FightEnv
 
 __version__ = "0.1.0"

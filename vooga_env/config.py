@@ -50,7 +50,7 @@ class ArenaConfig:
     """The arena's bounds and the stage: left, right and top bounds rebound; the bottom is open.
 
     `spawns` holds each fighter's spawn x (the left edge, px); fighters spawn standing on the
-    highest block under them. `spawn_jitter` (px) moves each spawn by a seeded random amount.
+    highest block under them, so never inside one. `spawn_jitter` (px) moves each spawn by a seeded random amount.
     """
 
     width: float = 800.0
@@ -324,22 +324,12 @@ def _check_arena(config: FightConfig, source: str) -> None:
             _fail(source, key, x, "the fighter (with jitter) must spawn inside the arena's bounds")
         if spawn_block(arena, x, fighter.width) is None:
             _fail(source, key, x, "the fighter must spawn above a block of the stage")
-        top = spawn_block(arena, x, fighter.width).y - fighter.height
-        if top < 0:
+        if spawn_block(arena, x, fighter.width).y - fighter.height < 0:
             _fail(source, key, x, "the fighter is too tall to stand on the block under it")
-        for block_index, block in enumerate(arena.blocks):
-            if _overlaps(x, top, fighter.width, fighter.height, block):
-                _fail(source, key, x, f"the fighter would spawn inside arena.blocks[{block_index}]")
 
 
 def spawn_block(arena: ArenaConfig, x: float, width: float) -> Block | None:
     """The highest block under a fighter whose left edge is at `x`, or None."""
     under = [block for block in arena.blocks if block.x < x + width and x < block.x + block.width]
     return min(under, key=lambda block: block.y, default=None)
-
-
-def _overlaps(x: float, y: float, width: float, height: float, block: Block) -> bool:
-    return x < block.x + block.width and block.x < x + width and y < block.y + block.height and (
-        block.y < y + height
-    )
 

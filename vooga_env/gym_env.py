@@ -9,7 +9,7 @@ import gymnasium
 import numpy as np
 
 from vooga_env.config import FightConfig
-from vooga_env.env import AGENTS, FightParallelEnv
+from vooga_env.parallel import AGENTS, FightParallelEnv
 from vooga_env.policies import Policy, make_policy
 
 
