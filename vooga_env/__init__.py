@@ -10,8 +10,8 @@ import gymnasium
 
 from vooga_env.actions import Action
 from vooga_env.config import ConfigError, FightConfig, load_config
-from vooga_env.parallel import FightParallelEnv, env, parallel_env, raw_env
 from vooga_env.gym_env import FightEnv
+from vooga_env.parallel import FightParallelEnv, env, parallel_env, raw_env
 
 __version__ = "0.1.0"
 
@@ -23,7 +23,9 @@ GYM_IDS = {
 }
 for _id, _config in GYM_IDS.items():
     if _id not in gymnasium.registry:
-        gymnasium.register(_id, entry_point="vooga_env.gym_env:FightEnv", kwargs={"config": _config})
+        gymnasium.register(
+            _id, entry_point="vooga_env.gym_env:FightEnv", kwargs={"config": _config}
+        )
 
 __all__ = [
     "Action",

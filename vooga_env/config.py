@@ -50,7 +50,8 @@ class ArenaConfig:
     """The arena's bounds and the stage: left, right and top bounds rebound; the bottom is open.
 
     `spawns` holds each fighter's spawn x (the left edge, px); fighters spawn standing on the
-    highest block under them, so never inside one. `spawn_jitter` (px) moves each spawn by a seeded random amount.
+    highest block under them, so never inside one. `spawn_jitter` (px) moves each spawn by a
+    seeded random amount.
     """
 
     width: float = 800.0
@@ -76,7 +77,8 @@ class PhysicsConfig:
 class AttackConfig:
     """One attack: frame counts, damage and knockback, and its hitbox relative to the attacker.
 
-    The hitbox sticks out of the attacker's front edge, `offset_y` px below its top.
+    The hitbox sticks out of the attacker's front edge, `offset_y` px below the top of a
+    standing fighter (crouching or not, attacks are placed from the feet).
     Knockback (px/ms) = `knockback + knockback_growth * damage already taken`, launched `angle`
     degrees above the horizontal, in the attacker's facing direction.
     """
@@ -107,6 +109,7 @@ class FighterConfig:
     jump_speed: float = 0.75
     air_jumps: int = 1
     fast_fall_speed: float = 0.9
+    head_slide: float = 2.0  # a fighter landing on the other slides off at this walking vector
     block_damage: float = 0.2
     block_knockback: float = 0.25
     punch: AttackConfig = AttackConfig()
@@ -164,7 +167,7 @@ class FightConfig:
 
     def replace(self, **changes: Any) -> FightConfig:
         """A copy with top-level or nested (dict) changes, validated like a loaded file."""
-        return _build(FightConfig, _merge(_as_dict(self), changes), "overrides")
+        return build_config(FightConfig, _merge(_as_dict(self), changes), "overrides")
 
 
 def load_config(config: str | Path | FightConfig = "default", **overrides: Any) -> FightConfig:
@@ -188,7 +191,7 @@ def load_config(config: str | Path | FightConfig = "default", **overrides: Any) 
         raise ConfigError(f"{path}: not valid TOML: {error}") from None
     data.setdefault("name", path.stem)
     source = f"{path} with overrides {overrides}" if overrides else str(path)
-    return _build(FightConfig, _merge(data, overrides), source)
+    return build_config(FightConfig, _merge(data, overrides), source)
 
 
 def _merge(base: Mapping[str, Any], changes: Mapping[str, Any]) -> dict[str, Any]:
@@ -209,8 +212,12 @@ def _as_dict(config: Any) -> Any:
     return config
 
 
-def _build(cls: type, data: Any, source: str, prefix: str = "") -> Any:
-    """Build dataclass `cls` from `data`, checking every key and type; then check the whole."""
+def build_config(cls: type, data: Any, source: str, prefix: str = "") -> Any:
+    """Build dataclass `cls` from `data`, checking every key and type; then check the whole.
+
+    A dataclass may refuse values in `__post_init__` by raising ConfigError("key = value ...");
+    the source and the key's prefix are added here.
+    """
     if dataclasses.is_dataclass(data) and isinstance(data, cls):
         data = _as_dict(data)
     if not isinstance(data, Mapping):
@@ -226,7 +233,10 @@ def _build(cls: type, data: Any, source: str, prefix: str = "") -> Any:
     for name in names:
         if name in data:
             values[name] = _convert(hints[name], data[name], source, prefix + name)
-    built = cls(**values)
+    try:
+        built = cls(**values)
+    except ConfigError as error:
+        raise ConfigError(f"{source}: {prefix}{error}") from None
     _check(built, source, prefix)
     return built
 
@@ -234,7 +244,7 @@ def _build(cls: type, data: Any, source: str, prefix: str = "") -> Any:
 def _convert(hint: Any, value: Any, source: str, key: str) -> Any:
     origin = typing.get_origin(hint)
     if dataclasses.is_dataclass(hint):
-        return _build(hint, value, source, key + ".")
+        return build_config(hint, value, source, key + ".")
     if origin is tuple:
         if not isinstance(value, (list, tuple)):
             raise ConfigError(f"{source}: {key} must be a list, got {value!r}")
@@ -243,7 +253,11 @@ def _convert(hint: Any, value: Any, source: str, key: str) -> Any:
             _convert(item_hint, item, source, f"{key}[{index}]") for index, item in enumerate(value)
         )
     if hint is float:
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        if (
+            isinstance(value, bool)
+            or not isinstance(value, (int, float))
+            or not math.isfinite(value)
+        ):
             raise ConfigError(f"{source}: {key} must be a finite number, got {value!r}")
         return float(value)
     if hint is int:
@@ -273,8 +287,15 @@ _NON_NEGATIVE = {
     ArenaConfig: ("spawn_jitter",),
     PhysicsConfig: ("speed_factor", "out_bound_distance", "ground_friction"),
     AttackConfig: ("startup", "recovery", "damage", "knockback", "knockback_growth", "hitstun"),
-    FighterConfig: ("speed", "jump_speed", "air_jumps", "fast_fall_speed", "block_damage",
-                    "block_knockback"),
+    FighterConfig: (
+        "speed",
+        "jump_speed",
+        "air_jumps",
+        "fast_fall_speed",
+        "head_slide",
+        "block_damage",
+        "block_knockback",
+    ),
     RewardConfig: ("damage", "ring_out", "ko", "time_penalty"),
 }
 
@@ -290,12 +311,18 @@ def _check(config: Any, source: str, prefix: str) -> None:
     if isinstance(config, AttackConfig) and config.active < 1:
         _fail(source, prefix + "active", config.active, "an attack needs at least 1 active frame")
     if isinstance(config, FighterConfig) and config.crouch_height > config.height:
-        _fail(source, prefix + "crouch_height", config.crouch_height,
-              f"must be <= height ({config.height})")
+        _fail(
+            source,
+            prefix + "crouch_height",
+            config.crouch_height,
+            f"must be <= height ({config.height})",
+        )
     if isinstance(config, CollisionConfig):
         for name in ("enemy", "neutral", "friends"):
             if getattr(config, name) not in REACTIONS:
-                _fail(source, prefix + name, getattr(config, name), f"one of {', '.join(REACTIONS)}")
+                _fail(
+                    source, prefix + name, getattr(config, name), f"one of {', '.join(REACTIONS)}"
+                )
     if isinstance(config, FightConfig):
         _check_arena(config, source)
 
@@ -305,22 +332,36 @@ def _check_arena(config: FightConfig, source: str) -> None:
     if not arena.blocks:
         _fail(source, "arena.blocks", [], "the stage needs at least one block")
     for index, block in enumerate(arena.blocks):
-        if block.x < 0 or block.x + block.width > arena.width or block.y < 0 or (
-            block.y + block.height > arena.height
+        if (
+            block.x < 0
+            or block.x + block.width > arena.width
+            or block.y < 0
+            or (block.y + block.height > arena.height)
         ):
-            _fail(source, f"arena.blocks[{index}]", block,
-                  f"must lie inside the {arena.width:g}x{arena.height:g} arena")
+            _fail(
+                source,
+                f"arena.blocks[{index}]",
+                block,
+                f"must lie inside the {arena.width:g}x{arena.height:g} arena",
+            )
     stage_left = min(block.x for block in arena.blocks)
     stage_right = max(block.x + block.width for block in arena.blocks)
     if stage_left <= 0 and stage_right >= arena.width:
-        _fail(source, "arena.blocks", arena.blocks,
-              "the stage must be narrower than the arena, or nobody can be rung out")
+        _fail(
+            source,
+            "arena.blocks",
+            arena.blocks,
+            "the stage must be narrower than the arena, or nobody can be rung out",
+        )
     if len(arena.spawns) != 2:
         _fail(source, "arena.spawns", arena.spawns, "exactly two spawn x positions")
     margin = config.physics.out_bound_distance
     for index, x in enumerate(arena.spawns):
         key = f"arena.spawns[{index}]"
-        if x - arena.spawn_jitter < margin or x + fighter.width + arena.spawn_jitter > arena.width - margin:
+        if (
+            x - arena.spawn_jitter < margin
+            or x + fighter.width + arena.spawn_jitter > arena.width - margin
+        ):
             _fail(source, key, x, "the fighter (with jitter) must spawn inside the arena's bounds")
         if spawn_block(arena, x, fighter.width) is None:
             _fail(source, key, x, "the fighter must spawn above a block of the stage")
@@ -332,4 +373,3 @@ def spawn_block(arena: ArenaConfig, x: float, width: float) -> Block | None:
     """The highest block under a fighter whose left edge is at `x`, or None."""
     under = [block for block in arena.blocks if block.x < x + width and x < block.x + block.width]
     return min(under, key=lambda block: block.y, default=None)
-

@@ -45,7 +45,9 @@ def main(argv: list[str] | None = None) -> int:
     print(f"{names[agents[0]]} (fighter_0) vs {names[agents[1]]} (fighter_1) on {env.config.name}")
     step = 0
     while env.agents:
-        actions = {agent: policy.act(observations[agent]) for agent, policy in zip(agents, policies)}
+        actions = {
+            agent: policy.act(observations[agent]) for agent, policy in zip(agents, policies)
+        }
         observations, _, _, _, infos = env.step(actions)
         step += 1
         if headless:
@@ -54,8 +56,10 @@ def main(argv: list[str] | None = None) -> int:
             info, other = infos[agent], agents[1 - index]
             when = f"{step * seconds_per_step:5.2f}s"
             if info["hits_landed"]:
-                print(f"{when}  {names[agent]} hits {names[other]}: "
-                      f"{infos[other]['health']:.0f} hp left")
+                print(
+                    f"{when}  {names[agent]} hits {names[other]}: "
+                    f"{infos[other]['health']:.0f} hp left"
+                )
             if info["hits_blocked"]:
                 print(f"{when}  {names[agent]} blocks")
             if info["rung_out"]:
@@ -66,9 +70,9 @@ def main(argv: list[str] | None = None) -> int:
     result = "a draw" if winner == "draw" else f"{names[winner]} ({winner}) wins"
     print(f"after {step} steps ({step * seconds_per_step:.1f}s): {result}")
     if headless:
-        from vooga_env.recording import save_gif
+        from vooga_env.recording import save_animation
 
-        save_gif(frames, "demo.gif", fps=env.metadata["render_fps"])
+        save_animation(frames, "demo.gif", fps=env.metadata["render_fps"])
         print("wrote demo.gif")
     env.close()
     return 0

@@ -141,11 +141,17 @@ class Fight:
             self._place_hitbox(fighter)
         self.hit_reaction.hits.clear()
         contacts = self.world.step(self.config.physics.frame_time, motions)
+        for contact in contacts:
+            if contact.axis == 1 and {contact.sprite, contact.other} == set(self.fighters):
+                upper = contact.sprite if contact.normal > 0 else contact.other
+                upper.on_head = True
         grounded = {
             contact.other if isinstance(contact.sprite, PlatformBlock) else contact.sprite
             for contact in contacts
-            if isinstance(contact.sprite, PlatformBlock) and contact.edge == "up"
-            or isinstance(contact.other, PlatformBlock) and contact.edge == "down"
+            if isinstance(contact.sprite, PlatformBlock)
+            and contact.edge == "up"
+            or isinstance(contact.other, PlatformBlock)
+            and contact.edge == "down"
         }
         for fighter in self.fighters:
             fighter.on_ground = fighter in grounded
@@ -176,9 +182,19 @@ class Fight:
             if toward != 0.0:
                 fighter.facing = 1.0 if toward > 0.0 else -1.0
         fighter.blocking = free and action == Action.BLOCK and fighter.on_ground
-        self._crouch(fighter, free and action == Action.DOWN and fighter.on_ground)
+        attacking = fighter.move is not None or (free and action in ATTACKS)
+        self._crouch(
+            fighter,
+            fighter.on_ground
+            and ((free and action == Action.DOWN) or (fighter.crouching and attacking)),
+        )
         jumping = action in JUMPS
         motions = []
+        if fighter.on_head:
+            away = (fighter.x + fighter.width / 2) - (opponent.x + opponent.width / 2)
+            direction = (1.0 if away > 0.0 else -1.0) if away != 0.0 else -fighter.facing
+            motions.append(MotionAction(fighter, direction * config.head_slide, 0.0))
+            fighter.on_head = False
         if free:
             if jumping and not fighter.jump_held:
                 if fighter.on_ground:
@@ -198,7 +214,11 @@ class Fight:
         return motions
 
     def _crouch(self, fighter: Fighter, crouch: bool) -> None:
-        """Crouching lowers the fighter's top edge; its feet stay where they are."""
+        """Crouching lowers the fighter's top edge; its feet stay where they are.
+
+        An attack started from a crouch stays crouched until it ends (a low kick beats a high
+        punch), and its hitbox sits where a standing one would: attacks are placed from the feet.
+        """
         if crouch == fighter.crouching:
             return
         bottom = fighter.bottom
@@ -216,7 +236,7 @@ class Fight:
             hitbox.width = attack.hitbox_width
             hitbox.height = attack.hitbox_height
             hitbox.x = fighter.right if fighter.facing > 0 else fighter.left - attack.hitbox_width
-            hitbox.y = fighter.y + attack.offset_y
+            hitbox.y = fighter.bottom - fighter.config.height + attack.offset_y
 
     def _advance(self, fighter: Fighter) -> None:
         """Count down stun and move frames after a physics frame."""
@@ -251,6 +271,7 @@ class Fight:
         fighter.facing = SIDES[fighter.index]
         fighter.jumps_left = config.air_jumps
         fighter.on_ground = True
+        fighter.on_head = False
         fighter.jump_held = False
         fighter.move = None
         fighter.move_frame = 0

@@ -24,7 +24,7 @@ class FightEnv(gymnasium.Env):
     `FightParallelEnv`: `config`, `render_mode`, `reward_fn`, and config overrides.
 
     Observations, actions, rewards and infos are the learner's, as in the parallel env;
-    `info["opponent_action"]` says what the opponent did.
+    `info["seat"]`, `info["opponent"]` (its name) and `info["opponent_action"]` are added.
     """
 
     metadata = FightParallelEnv.metadata
@@ -48,6 +48,10 @@ class FightEnv(gymnasium.Env):
         self.observation_space = self.fight_env.observation_space(AGENTS[0])
         self.action_space = self.fight_env.action_space(AGENTS[0])
         self._opponent_observation: np.ndarray | None = None
+
+    def set_opponent(self, opponent: Any, seed: int | None = None) -> None:
+        """Fight a different opponent from the next step on (curricula and self-play swap here)."""
+        self.opponent = make_policy(opponent, seed)
 
     @property
     def config(self) -> FightConfig:
@@ -75,7 +79,12 @@ class FightEnv(gymnasium.Env):
             {me: action, them: opponent_action}
         )
         self._opponent_observation = observations[them]
-        info = {**infos[me], "seat": self.seat, "opponent_action": opponent_action}
+        info = {
+            **infos[me],
+            "seat": self.seat,
+            "opponent": self.opponent.name,
+            "opponent_action": opponent_action,
+        }
         return observations[me], rewards[me], terminations[me], truncations[me], info
 
     def render(self) -> np.ndarray | None:

@@ -37,6 +37,7 @@ class Fighter(FighterBody):
         self.stocks = 0
         self.jumps_left = config.air_jumps
         self.on_ground = False
+        self.on_head = False  # resting on the opponent: slides off next frame
         self.jump_held = False
         self.move: str | None = None
         self.move_frame = 0
@@ -63,8 +64,9 @@ class Hitbox(SpriteTemplate):
     """
 
     def __init__(self, owner: Fighter) -> None:
-        super().__init__(0.0, 0.0, 1.0, 1.0, mass=math.inf, gravity_scale=0.0,
-                         name=f"{owner.name}.hitbox")
+        super().__init__(
+            0.0, 0.0, 1.0, 1.0, mass=math.inf, gravity_scale=0.0, name=f"{owner.name}.hitbox"
+        )
         self.owner = owner
         self.active = False
         self.struck: set[Fighter] = set()
@@ -93,7 +95,9 @@ class ReactionHit(Reaction):
     def __init__(self) -> None:
         self.hits: list[Hit] = []
 
-    def act(self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, engine: PhysicsEngine) -> None:
+    def act(
+        self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, engine: PhysicsEngine
+    ) -> None:
         hitbox, defender = sprite_one, sprite_two
         if not isinstance(hitbox, Hitbox) or not isinstance(defender, Fighter):
             return
@@ -119,7 +123,10 @@ def hit_kind(reaction: ReactionHit) -> CollisionKindCustom:
     """The collision kind 'a hitbox touches a fighter', running `reaction`."""
     kind = CollisionKindCustom(reaction)
     kind.set_type(
-        Hitbox, CollisionKindCustom.Type.IS, CollisionKindCustom.Relation.AND,
-        Fighter, CollisionKindCustom.Type.SUB,
+        Hitbox,
+        CollisionKindCustom.Type.IS,
+        CollisionKindCustom.Relation.AND,
+        Fighter,
+        CollisionKindCustom.Type.SUB,
     )
     return kind

@@ -93,12 +93,12 @@ class FightParallelEnv(ParallelEnv):
         self.state_space = spaces.Box(LOW, HIGH, (2 * OBSERVATION_SIZE,), np.float32)
         self._viewer = None
 
-    @functools.lru_cache(maxsize=None)  # noqa: B019 - PettingZoo wants the same object every call
+    @functools.cache  # noqa: B019 - PettingZoo wants the same object every call
     def observation_space(self, agent: str) -> spaces.Box:
         self._check_agent(agent)
         return self._observation_space
 
-    @functools.lru_cache(maxsize=None)  # noqa: B019
+    @functools.cache  # noqa: B019
     def action_space(self, agent: str) -> spaces.Discrete:
         self._check_agent(agent)
         return self._action_space
@@ -205,7 +205,9 @@ def _action_index(agent: str, action: Any) -> int:
     if isinstance(action, np.ndarray) and action.shape == ():
         value = action.item()
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
-        raise TypeError(f"action for {agent} must be an int in 0..{len(Action) - 1}, got {action!r}")
+        raise TypeError(
+            f"action for {agent} must be an int in 0..{len(Action) - 1}, got {action!r}"
+        )
     if not 0 <= value < len(Action):
         raise ValueError(f"action for {agent} must be in 0..{len(Action) - 1}, got {action!r}")
     return int(value)

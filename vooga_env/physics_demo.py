@@ -99,15 +99,23 @@ def main() -> None:
     logs += run_scene(
         "two team-mates slide into each other (MomentumConservation: equal masses swap)",
         [a, b],
-        [CollisionKindFriends(ReactionMomentumConservation()), CollisionKindNeutral(ReactionRebound())],
+        [
+            CollisionKindFriends(ReactionMomentumConservation()),
+            CollisionKindNeutral(ReactionRebound()),
+        ],
         30,
     )
 
     fighter = FighterBody(300, 340, 40, 60, group_id="red", name="red")
     ball = SpriteTemplate(120, 350, 16, 16, mass=50.0, vx=0.5, gravity_scale=0.0, name="ball")
     hit = CollisionKindCustom(ReactionForce(force_x1=30.0, force_y1=-60.0))
-    hit.set_type(SpriteTemplate, CollisionKindCustom.Type.IS, CollisionKindCustom.Relation.AND,
-                 FighterBody, CollisionKindCustom.Type.SUB)
+    hit.set_type(
+        SpriteTemplate,
+        CollisionKindCustom.Type.IS,
+        CollisionKindCustom.Relation.AND,
+        FighterBody,
+        CollisionKindCustom.Type.SUB,
+    )
     logs += run_scene(
         "a ball hits red (CollisionKindCustom -> Force)",
         [fighter],

@@ -222,7 +222,7 @@ class PredictPolicy(Policy):
 
 
 def make_policy(spec: str | Path | Policy | Callable | Any, seed: int | None = None) -> Policy:
-    """A Policy from a scripted name, a saved SB3 model (.zip), a Policy, a predict-er or a callable."""
+    """A Policy from a scripted name, a saved model (.zip), a Policy, a predict-er or a callable."""
     if isinstance(spec, Policy):
         return spec
     if isinstance(spec, (str, Path)):
@@ -230,14 +230,17 @@ def make_policy(spec: str | Path | Policy | Callable | Any, seed: int | None = N
             return SCRIPTED[str(spec)](seed)
         path = Path(spec)
         if path.suffix == ".zip" or path.with_suffix(".zip").is_file():
-            from vooga_env.models import load_model
+            from vooga_env.models import FrozenPolicy, load_model
 
-            return PredictPolicy(load_model(path), name=path.stem)
+            return FrozenPolicy(load_model(path), name=path.stem)
         raise ValueError(
-            f"unknown policy {str(spec)!r}: use one of {', '.join(SCRIPTED)} or a saved model (.zip)"
+            f"unknown policy {str(spec)!r}: use one of {', '.join(SCRIPTED)} "
+            "or a saved model (.zip)"
         )
     if hasattr(spec, "predict"):
         return PredictPolicy(spec, name=type(spec).__name__)
     if callable(spec):
         return CallablePolicy(spec)
-    raise TypeError(f"a policy must be a name, a model path, a callable or have predict(), got {spec!r}")
+    raise TypeError(
+        f"a policy must be a name, a model path, a callable or have predict(), got {spec!r}"
+    )

@@ -31,9 +31,7 @@ class Viewer:
         try:
             import pygame
         except ImportError:
-            raise ImportError(
-                "rendering needs pygame: pip install 'vooga-env[render]'"
-            ) from None
+            raise ImportError("rendering needs pygame: pip install 'vooga-env[render]'") from None
         self.pygame = pygame
         self.fight = fight
         self.mode = mode
@@ -57,7 +55,9 @@ class Viewer:
         width, height = self.size
         pygame.draw.rect(surface, BLAST, (0, height - 4, width, 4))
         for block in fight.blocks:
-            rect = pygame.Rect(round(block.x), round(block.y), round(block.width), round(block.height))
+            rect = pygame.Rect(
+                round(block.x), round(block.y), round(block.width), round(block.height)
+            )
             pygame.draw.rect(surface, STAGE, rect)
             pygame.draw.rect(surface, STAGE_EDGE, (rect.x, rect.y, rect.width, 3))
         for fighter in fight.fighters:
@@ -76,14 +76,18 @@ class Viewer:
         colour = FIGHTER_COLOURS[fighter.index]
         if fighter.hitstun > 0 and fighter.hitstun % 2:
             colour = (255, 255, 255)
-        body = pygame.Rect(round(fighter.x), round(fighter.y), round(fighter.width), round(fighter.height))
+        body = pygame.Rect(
+            round(fighter.x), round(fighter.y), round(fighter.width), round(fighter.height)
+        )
         pygame.draw.rect(surface, colour, body, border_radius=6)
         eye_x = body.centerx + int(fighter.facing * body.width * 0.25)
         pygame.draw.circle(surface, (255, 255, 255), (eye_x, body.y + 12), 5)
         pygame.draw.circle(surface, (20, 20, 20), (eye_x + int(fighter.facing * 2), body.y + 12), 2)
         if fighter.blocking:
             shield_x = body.right + 3 if fighter.facing > 0 else body.left - 9
-            pygame.draw.rect(surface, (160, 230, 255), (shield_x, body.y, 6, body.height), border_radius=3)
+            pygame.draw.rect(
+                surface, (160, 230, 255), (shield_x, body.y, 6, body.height), border_radius=3
+            )
         hitbox = fighter.hitbox
         if hitbox.active:
             rect = (round(hitbox.x), round(hitbox.y), round(hitbox.width), round(hitbox.height))
@@ -100,11 +104,15 @@ class Viewer:
             left = 20 if fighter.index == 0 else width - 220
             share = max(fighter.health, 0.0) / fighter.config.health
             pygame.draw.rect(surface, (60, 60, 70), (left, 16, 200, 14))
-            pygame.draw.rect(surface, FIGHTER_COLOURS[fighter.index], (left, 16, round(200 * share), 14))
+            pygame.draw.rect(
+                surface, FIGHTER_COLOURS[fighter.index], (left, 16, round(200 * share), 14)
+            )
             text = self.font.render(
                 f"{fighter.name}  {fighter.health:.0f} hp  stocks {fighter.stocks}", True, TEXT
             )
-            place = {"topleft": (left, 34)} if fighter.index == 0 else {"topright": (width - 20, 34)}
+            place = (
+                {"topleft": (left, 34)} if fighter.index == 0 else {"topright": (width - 20, 34)}
+            )
             surface.blit(text, text.get_rect(**place))
         seconds = (fight.config.max_cycles - fight.steps) * fight.config.frame_skip
         seconds *= fight.config.physics.frame_time / 1000.0

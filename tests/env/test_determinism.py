@@ -53,7 +53,7 @@ def test_seed_changes_the_spawns_when_jitter_is_on():
 
 
 def play(policies, seed, steps=400):
-    env = vooga_env.parallel_env()
+    env = vooga_env.parallel_env(arena={"spawn_jitter": 0.0})  # jitter is per seat, not mirrored
     obs, _ = env.reset(seed=seed)
     observations = []
     for _ in range(steps):

@@ -46,8 +46,13 @@ def test_unknown_config_name_lists_the_known_ones():
 
 @pytest.mark.parametrize(
     ("action", "error", "match"),
-    [(10, ValueError, "fighter_0.*0..9.*10"), (-1, ValueError, "-1"), (1.5, TypeError, "1.5"),
-     ("kick", TypeError, "kick"), (True, TypeError, "True")],
+    [
+        (10, ValueError, "fighter_0.*0..9.*10"),
+        (-1, ValueError, "-1"),
+        (1.5, TypeError, "1.5"),
+        ("kick", TypeError, "kick"),
+        (True, TypeError, "True"),
+    ],
 )
 def test_wrong_actions(action, error, match):
     env = vooga_env.parallel_env()

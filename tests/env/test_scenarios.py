@@ -72,6 +72,17 @@ def test_crouching_ducks_a_punch_but_not_a_kick():
         assert (two.health < env.config.fighter.health) == lands
 
 
+def test_a_kick_from_a_crouch_stays_low_and_ducks_the_punch_it_beats():
+    env, one, two = face_off(10.0)
+    run(env, (Action.DOWN, IDLE), 1)
+    run(env, (KICK, PUNCH), 1)
+    assert one.crouching and one.move == "kick"
+    run(env, (IDLE, IDLE), 8)
+    fighter = env.config.fighter
+    assert one.health == fighter.health
+    assert two.health == fighter.health - fighter.kick.damage
+
+
 def test_a_fighter_knocked_past_the_edge_falls_and_is_rung_out():
     env, one, two = face_off(10.0)
     stage_right = env.fight.stage_right
@@ -127,6 +138,15 @@ def test_jump_lands_back_on_the_stage_and_air_jump_needs_a_second_press():
     assert one.jumps_left == env.config.fighter.air_jumps - 1
     run(env, (IDLE, IDLE), 80)
     assert one.y == ground and one.on_ground
+
+
+def test_nobody_stands_on_the_other_fighters_head():
+    env, one, two = face_off(0.0)
+    one.x = two.x
+    one.y = two.y - one.height - 5.0
+    run(env, (IDLE, IDLE), 30)
+    assert one.on_ground and two.on_ground
+    assert one.right <= two.left or two.right <= one.left
 
 
 def test_walking_left_for_fighter_1_is_mirrored():

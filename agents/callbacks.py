@@ -1,0 +1,196 @@
+"""SB3 callbacks for training fighters: the curriculum ladder, self-play, and checkpoints."""
+
+from __future__ import annotations
+
+import json
+import os
+from collections import deque
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from stable_baselines3.common.callbacks import BaseCallback, CheckpointCallback
+
+from agents.train_config import CurriculumConfig, SelfPlayConfig
+from vooga_env.elo import START_RATING, expected_score, update
+from vooga_env.models import FrozenPolicy
+
+STATE_FILE = "train_state.json"
+
+
+def learner_won(info: dict[str, Any]) -> float | None:
+    """The learner's score at an episode's end: 1, 0.5 or 0 (None before the end)."""
+    winner = info.get("winner")
+    if winner is None:
+        return None
+    if winner == "draw":
+        return 0.5
+    return 1.0 if winner == f"fighter_{info['seat']}" else 0.0
+
+
+class CurriculumCallback(BaseCallback):
+    """Scripted opponents from weak to strong, promoted on the win rate over recent games."""
+
+    def __init__(self, config: CurriculumConfig, seed: int, stage: int = 0) -> None:
+        super().__init__()
+        self.config = config
+        self.stage = stage
+        self.results: deque[float] = deque(maxlen=config.window)
+        self.rng = np.random.default_rng(seed)
+
+    def _on_training_start(self) -> None:
+        self._assign()
+
+    def _on_step(self) -> bool:
+        for done, info in zip(self.locals["dones"], self.locals["infos"]):
+            if done and info.get("opponent") == self.opponent:
+                outcome = learner_won(info)
+                if outcome is not None:
+                    self.results.append(outcome)
+        if len(self.results) == self.config.window:
+            rate = float(np.mean(self.results))
+            self.logger.record("curriculum/win_rate", rate)
+            if rate >= self.config.promote_win_rate and self.stage + 1 < len(self.config.ladder):
+                self.stage += 1
+                self.results.clear()
+                self._assign()
+                print(
+                    f"step {self.num_timesteps}: won {rate:.0%} of the last {self.config.window}"
+                    f" games, promoted to {self.opponent}",
+                    flush=True,
+                )
+        self.logger.record("curriculum/stage", self.stage)
+        return True
+
+    @property
+    def opponent(self) -> str:
+        return self.config.ladder[self.stage]
+
+    def _assign(self) -> None:
+        """Most envs fight the current rung; `review_ratio` of them an earlier or equal one."""
+        envs = self.training_env.num_envs
+        reviewers = int(round(envs * self.config.review_ratio))
+        for index in range(envs):
+            name = self.opponent
+            if index >= envs - reviewers:
+                name = self.config.ladder[int(self.rng.integers(self.stage + 1))]
+            self.training_env.env_method(
+                "set_opponent", name, int(self.rng.integers(2**31)), indices=[index]
+            )
+
+    def state(self) -> dict[str, Any]:
+        return {"stage": self.stage, "opponent": self.opponent}
+
+
+class SelfPlayCallback(BaseCallback):
+    """A pool of frozen snapshots of the learner; each env's opponent redrawn every swap_steps.
+
+    Elo: the learner and every snapshot are rated from the learner's games; a new snapshot starts
+    at the learner's rating. The ratings are logged and kept with the checkpoints.
+    """
+
+    def __init__(
+        self, config: SelfPlayConfig, folder: Path, seed: int, state: dict[str, Any] | None = None
+    ) -> None:
+        super().__init__()
+        self.config = config
+        self.folder = folder
+        self.rng = np.random.default_rng(seed)
+        state = state or {}
+        self.pool: list[str] = state.get("pool", [])
+        self.ratings: dict[str, float] = state.get("ratings", {"learner": START_RATING})
+        self.last_save = state.get("last_save", 0)
+        self.last_swap = -self.config.swap_steps
+        self._frozen: dict[str, FrozenPolicy] = {}
+
+    def _on_training_start(self) -> None:
+        if not self.pool:
+            self._snapshot()
+        self._swap()
+
+    def _on_step(self) -> bool:
+        if self.num_timesteps - self.last_save >= self.config.save_steps:
+            self._snapshot()
+        if self.num_timesteps - self.last_swap >= self.config.swap_steps:
+            self._swap()
+        for done, info in zip(self.locals["dones"], self.locals["infos"]):
+            outcome = learner_won(info) if done else None
+            opponent = info.get("opponent")
+            if outcome is not None and opponent in self.ratings:
+                self.ratings["learner"], self.ratings[opponent] = update(
+                    self.ratings["learner"], self.ratings[opponent], outcome
+                )
+        self.logger.record("selfplay/learner_elo", self.ratings["learner"])
+        self.logger.record("selfplay/pool_size", len(self.pool))
+        return True
+
+    def _snapshot(self) -> None:
+        name = f"snapshot_{self.num_timesteps}"
+        path = self.folder / f"{name}.zip"
+        self.model.save(path)
+        self.pool.append(name)
+        self.ratings.setdefault(name, self.ratings["learner"])
+        self.pool = self.pool[-self.config.window :]
+        self.last_save = self.num_timesteps
+
+    def _frozen_policy(self, name: str) -> FrozenPolicy:
+        if name not in self._frozen:
+            from vooga_env.models import load_model
+
+            self._frozen[name] = FrozenPolicy(
+                load_model(self.folder / f"{name}.zip"), name, deterministic=False
+            )
+        return self._frozen[name]
+
+    def _swap(self) -> None:
+        config = self.config
+        for index in range(self.training_env.num_envs):
+            draw = self.rng.random()
+            if draw < config.scripted_ratio and config.scripted:
+                name = config.scripted[int(self.rng.integers(len(config.scripted)))]
+                opponent: Any = name
+            else:
+                if self.rng.random() < config.play_against_latest_ratio:
+                    name = self.pool[-1]
+                else:
+                    name = self.pool[int(self.rng.integers(len(self.pool)))]
+                opponent = self._frozen_policy(name)
+            self.training_env.env_method(
+                "set_opponent", opponent, int(self.rng.integers(2**31)), indices=[index]
+            )
+        self.last_swap = self.num_timesteps
+
+    def state(self) -> dict[str, Any]:
+        return {"pool": self.pool, "ratings": self.ratings, "last_save": self.last_save}
+
+    def expected_against(self, name: str) -> float:
+        return expected_score(self.ratings["learner"], self.ratings[name])
+
+
+class StateCheckpointCallback(CheckpointCallback):
+    """SB3's CheckpointCallback, plus the run's state and a `latest.zip` written atomically."""
+
+    def __init__(self, save_freq: int, folder: Path, parts: list[Any]) -> None:
+        super().__init__(
+            save_freq=save_freq, save_path=str(folder / "checkpoints"), name_prefix="ppo"
+        )
+        self.folder = folder
+        self.parts = parts
+
+    def _on_step(self) -> bool:
+        if self.n_calls % self.save_freq == 0:
+            save_checkpoint(self.model, self.folder, self.parts)
+        return super()._on_step()
+
+
+def save_checkpoint(model: Any, folder: Path, parts: list[Any]) -> None:
+    """Write latest.zip and train_state.json so that a crash mid-write leaves the old pair."""
+    folder.mkdir(parents=True, exist_ok=True)
+    temporary = folder / "latest.tmp.zip"
+    model.save(temporary)
+    os.replace(temporary, folder / "latest.zip")
+    state = {"num_timesteps": int(model.num_timesteps)}
+    for part in parts:
+        state.update(part.state())
+    (folder / f"{STATE_FILE}.tmp").write_text(json.dumps(state, indent=2))
+    os.replace(folder / f"{STATE_FILE}.tmp", folder / STATE_FILE)

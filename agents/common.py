@@ -1,0 +1,151 @@
+"""What the command-line tools share: the fight options, policy and config look-up with clean
+errors, a progress bar, plain-text tables and JSON output."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any
+
+from vooga_env.config import ConfigError, FightConfig, load_config
+from vooga_env.match import EpisodeRecord
+from vooga_env.policies import SCRIPTED, Policy, make_policy
+
+# pygame greets on stdout when imported; that would break --json output.
+os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+
+
+class WindowClosed(Exception):
+    """The person closed the pygame window: stop quietly."""
+
+
+def add_fight_options(parser: argparse.ArgumentParser, episodes: int | None = None) -> None:
+    """--config, --max-cycles, --seed, and (if `episodes` is given) --episodes with that default."""
+    parser.add_argument(
+        "--config", default="default", help="a config name from configs/ or a .toml path"
+    )
+    parser.add_argument(
+        "--max-cycles", type=int, default=None, help="override the config's episode length (steps)"
+    )
+    parser.add_argument("--seed", type=_non_negative, default=0, help="base seed (default 0)")
+    if episodes is not None:
+        parser.add_argument(
+            "--episodes", type=_positive, default=episodes, help=f"games (default {episodes})"
+        )
+
+
+def add_output_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
+def fight_config(parser: argparse.ArgumentParser, args: argparse.Namespace) -> FightConfig:
+    """The config the options name, or a usage error naming the bad name or key."""
+    overrides = {} if args.max_cycles is None else {"max_cycles": args.max_cycles}
+    try:
+        return load_config(args.config, **overrides)
+    except ConfigError as error:
+        parser.error(str(error))
+
+
+def policy(parser: argparse.ArgumentParser, spec: str) -> Policy:
+    """A scripted fighter or a saved model, or a usage error that lists the known names."""
+    try:
+        return make_policy(spec)
+    except (ValueError, FileNotFoundError, ImportError) as error:
+        message = str(error)
+        if not all(name in message for name in SCRIPTED):
+            message += f" (scripted fighters: {', '.join(SCRIPTED)})"
+        parser.error(message)
+
+
+def progress_bar(
+    total: int, enabled: bool, description: str
+) -> tuple[Callable[[EpisodeRecord], None] | None, Callable[[], None]]:
+    """A per-game callback that advances a tqdm bar on stderr, and a function that closes it."""
+    if not enabled:
+        return None, lambda: None
+    try:
+        from tqdm import tqdm
+    except ImportError:  # the bar is a nicety; tqdm comes with the `train` extra
+        return None, lambda: None
+    bar = tqdm(total=total, desc=description, unit="game", file=sys.stderr, leave=False)
+    return (lambda _record: bar.update()), bar.close
+
+
+def stop_on_window_close(_record: EpisodeRecord) -> None:
+    """A step hook for human rendering: raise WindowClosed on the window's close button or Esc.
+
+    It empties pygame's event queue each step, so that a long watch cannot fill it.
+    """
+    import pygame
+
+    if not pygame.display.get_init():
+        return
+    for event in pygame.event.get():
+        if event.type == pygame.QUIT or (
+            event.type == pygame.KEYDOWN and event.key == pygame.K_ESCAPE
+        ):
+            raise WindowClosed
+
+
+def table(headers: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
+    """A plain-text table: text left-aligned, numbers right-aligned, floats to 2 places."""
+    cells = [[_cell(value) for value in row] for row in rows]
+    widths = [max(len(str(h)), *(len(row[i]) for row in cells)) for i, h in enumerate(headers)]
+    numeric = [
+        all(_is_number(row[i]) for row in rows) if rows else False for i in range(len(headers))
+    ]
+
+    def line(values: Sequence[str]) -> str:
+        return "  ".join(
+            value.rjust(width) if right else value.ljust(width)
+            for value, width, right in zip(values, widths, numeric, strict=True)
+        ).rstrip()
+
+    rule = "  ".join("-" * width for width in widths)
+    return "\n".join([line([str(h) for h in headers]), rule, *(line(row) for row in cells)])
+
+
+def write_json(path: str | Path, data: Any) -> Path:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(data, indent=2) + "\n")
+    return path
+
+
+def print_json(data: Any) -> None:
+    print(json.dumps(data, indent=2))
+
+
+def fps(config: FightConfig) -> float:
+    """Env steps per second of game time."""
+    return 1000.0 / (config.physics.frame_time * config.frame_skip)
+
+
+def _cell(value: Any) -> str:
+    if isinstance(value, float):
+        return f"{value:.2f}"
+    return str(value)
+
+
+def _is_number(value: Any) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _positive(text: str) -> int:
+    value = int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be >= 1, got {value}")
+    return value
+
+
+def _non_negative(text: str) -> int:
+    value = int(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be >= 0, got {value}")
+    return value

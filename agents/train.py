@@ -1,0 +1,171 @@
+"""Train a fighter with Stable-Baselines3 PPO: a scripted curriculum or self-play.
+
+    python -m agents.train [--config default] [--out runs/NAME] [--seed N] [--steps N] [--resume]
+
+Config-driven (`configs/train/*.toml`). Checkpoints every `checkpoint_every` steps into
+`OUT/checkpoints/`, and `OUT/latest.zip` + `OUT/train_state.json` always hold the newest one:
+Ctrl-C or a crash saves them first, and `--resume` continues from them. Logs go to TensorBoard
+when it is installed. The finished model is `OUT/final.zip`; `agents.evaluate` measures it.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import json
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import torch
+from stable_baselines3 import PPO
+from stable_baselines3.common.callbacks import BaseCallback, CallbackList
+from stable_baselines3.common.env_util import make_vec_env
+from stable_baselines3.common.utils import set_random_seed
+from stable_baselines3.common.vec_env import DummyVecEnv
+
+from agents.callbacks import (
+    STATE_FILE,
+    CurriculumCallback,
+    SelfPlayCallback,
+    StateCheckpointCallback,
+    save_checkpoint,
+)
+from agents.train_config import TrainConfig, load_train_config
+from vooga_env.config import ConfigError
+from vooga_env.gym_env import FightEnv
+
+
+def make_envs(config: TrainConfig) -> DummyVecEnv:
+    """`n_envs` single-agent fights in one process; the learner's seat is drawn each episode."""
+    return make_vec_env(
+        FightEnv,
+        n_envs=config.n_envs,
+        seed=config.seed,
+        vec_env_cls=DummyVecEnv,
+        env_kwargs={"config": config.fight, "opponent": "idle", "seat": "random"},
+    )
+
+
+def build_model(config: TrainConfig, envs: DummyVecEnv, folder: Path) -> PPO:
+    ppo = config.ppo
+    tensorboard = str(folder / "tb") if importlib.util.find_spec("tensorboard") else None
+    return PPO(
+        "MlpPolicy",
+        envs,
+        learning_rate=ppo.learning_rate,
+        n_steps=ppo.n_steps,
+        batch_size=ppo.batch_size,
+        n_epochs=ppo.n_epochs,
+        gamma=ppo.gamma,
+        gae_lambda=ppo.gae_lambda,
+        ent_coef=ppo.ent_coef,
+        clip_range=ppo.clip_range,
+        policy_kwargs={"net_arch": list(ppo.net_arch)},
+        tensorboard_log=tensorboard,
+        seed=config.seed,
+        device="cpu",
+        verbose=0,
+    )
+
+
+class StopAfter(BaseCallback):
+    """Stops training once `minutes` of wall time have passed (the recipe's time budget)."""
+
+    def __init__(self, minutes: float) -> None:
+        super().__init__()
+        self.deadline = time.monotonic() + 60.0 * minutes
+
+    def _on_step(self) -> bool:
+        return time.monotonic() < self.deadline
+
+
+def train(
+    config: TrainConfig,
+    folder: Path,
+    resume: bool = False,
+    progress: bool = True,
+    minutes: float | None = None,
+) -> Path:
+    """Run (or continue) one training, for at most `minutes`; returns the final model's path."""
+    torch.set_num_threads(1)
+    set_random_seed(config.seed)
+    folder.mkdir(parents=True, exist_ok=True)
+    envs = make_envs(config)
+    state: dict[str, Any] = {}
+    if resume:
+        latest = folder / "latest.zip"
+        if not latest.is_file():
+            raise FileNotFoundError(f"--resume: no checkpoint at {latest}")
+        state = json.loads((folder / STATE_FILE).read_text())
+        model = PPO.load(latest, env=envs, device="cpu")
+    else:
+        (folder / "train_config.json").write_text(json.dumps(_plain(config), indent=2))
+        model = build_model(config, envs, folder)
+    if config.mode == "selfplay":
+        opponents: Any = SelfPlayCallback(config.selfplay, folder / "snapshots", config.seed, state)
+        (folder / "snapshots").mkdir(exist_ok=True)
+    else:
+        opponents = CurriculumCallback(config.curriculum, config.seed, state.get("stage", 0))
+    every = max(config.checkpoint_every // config.n_envs, 1)
+    checkpoints = StateCheckpointCallback(every, folder, [opponents])
+    callbacks = [opponents, checkpoints] + ([StopAfter(minutes)] if minutes else [])
+    remaining = config.total_timesteps - model.num_timesteps
+    try:
+        if remaining > 0:
+            model.learn(
+                remaining,
+                callback=CallbackList(callbacks),
+                reset_num_timesteps=not resume,
+                progress_bar=progress,
+            )
+    except BaseException:
+        save_checkpoint(model, folder, [opponents])
+        raise
+    save_checkpoint(model, folder, [opponents])
+    final = folder / "final.zip"
+    model.save(final)
+    return final
+
+
+def _plain(config: Any) -> Any:
+    from dataclasses import asdict
+
+    return asdict(config)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--config", default="default", help="a name in configs/train or a path")
+    parser.add_argument("--out", type=Path, help="run folder (default runs/CONFIG)")
+    parser.add_argument("--seed", type=int)
+    parser.add_argument("--steps", type=int, help="total timesteps (overrides the config)")
+    parser.add_argument("--resume", action="store_true", help="continue from OUT/latest.zip")
+    parser.add_argument("--minutes", type=float, help="stop after this much wall time")
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    args = parser.parse_args(argv)
+    try:
+        config = load_train_config(args.config, seed=args.seed, total_timesteps=args.steps)
+    except ConfigError as error:
+        parser.error(str(error))
+    folder = args.out or Path("runs") / config.name
+    try:
+        final = train(
+            config, folder, resume=args.resume, progress=not args.no_progress, minutes=args.minutes
+        )
+    except KeyboardInterrupt:
+        print(
+            f"\ninterrupted: the last checkpoint is {folder / 'latest.zip'}; "
+            f"continue with --resume --out {folder}",
+            file=sys.stderr,
+        )
+        return 130
+    except FileNotFoundError as error:
+        parser.error(str(error))
+    print(f"trained: {final}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

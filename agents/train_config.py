@@ -1,0 +1,121 @@
+"""Training configuration: frozen dataclasses loaded from `configs/train/*.toml`."""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from vooga_env.config import CONFIG_DIR, ConfigError, build_config
+from vooga_env.policies import SCRIPTED
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+TRAIN_DIR = CONFIG_DIR / "train"
+MODES = ("scripted", "selfplay")
+
+
+@dataclass(frozen=True)
+class PPOConfig:
+    """Stable-Baselines3 PPO hyperparameters (see its docs); `net_arch` for both heads."""
+
+    learning_rate: float = 3e-4
+    n_steps: int = 256
+    batch_size: int = 512
+    n_epochs: int = 4
+    gamma: float = 0.99
+    gae_lambda: float = 0.95
+    ent_coef: float = 0.01
+    clip_range: float = 0.2
+    net_arch: tuple[int, ...] = (64, 64)
+
+
+@dataclass(frozen=True)
+class CurriculumConfig:
+    """Scripted opponents from weak to strong; promoted when the learner's win rate over the
+    last `window` games passes `promote_win_rate`. `review_ratio` of the envs replay earlier rungs.
+    """
+
+    ladder: tuple[str, ...] = ("idle", "random", "rush")
+    promote_win_rate: float = 0.8
+    window: int = 50
+    review_ratio: float = 0.25
+
+    def __post_init__(self) -> None:
+        for name in self.ladder:
+            if name not in SCRIPTED:
+                raise ConfigError(f"ladder = {name!r} is not allowed: one of {', '.join(SCRIPTED)}")
+        if not self.ladder:
+            raise ConfigError("ladder = [] is not allowed: name at least one opponent")
+        if not 0.0 < self.promote_win_rate <= 1.0:
+            raise ConfigError(
+                f"promote_win_rate = {self.promote_win_rate} is not allowed: in (0, 1]"
+            )
+        if not 0.0 <= self.review_ratio < 1.0:
+            raise ConfigError(f"review_ratio = {self.review_ratio} is not allowed: in [0, 1)")
+
+
+@dataclass(frozen=True)
+class SelfPlayConfig:
+    """Self-play against frozen snapshots, in ML-Agents' ghost-trainer vocabulary.
+
+    A snapshot of the learner is saved every `save_steps`; the pool keeps the last `window`.
+    Every `swap_steps` each env draws its opponent: the latest snapshot with probability
+    `play_against_latest_ratio`, else one from the pool (or, with `scripted_ratio`, a scripted
+    fighter from `scripted`, which keeps the learner honest against fixed styles).
+    """
+
+    save_steps: int = 20_000
+    swap_steps: int = 4_096
+    window: int = 10
+    play_against_latest_ratio: float = 0.5
+    scripted_ratio: float = 0.2
+    scripted: tuple[str, ...] = ("rush", "turtle", "zoner", "edge_guard")
+
+
+@dataclass(frozen=True)
+class TrainConfig:
+    """One training run: the fight config, the opponents, PPO, checkpoints and evaluation."""
+
+    mode: str = "scripted"
+    fight: str = "default"
+    total_timesteps: int = 1_000_000
+    n_envs: int = 8
+    seed: int = 0
+    checkpoint_every: int = 50_000
+    eval_games: int = 200
+    ppo: PPOConfig = PPOConfig()
+    curriculum: CurriculumConfig = CurriculumConfig()
+    selfplay: SelfPlayConfig = SelfPlayConfig()
+    name: str = "default"
+
+    def __post_init__(self) -> None:
+        if self.mode not in MODES:
+            raise ConfigError(f"mode = {self.mode!r} is not allowed: one of {', '.join(MODES)}")
+        for key in ("total_timesteps", "n_envs", "checkpoint_every"):
+            if getattr(self, key) <= 0:
+                raise ConfigError(f"{key} = {getattr(self, key)} is not allowed: must be > 0")
+
+
+def load_train_config(config: str | Path, **overrides: Any) -> TrainConfig:
+    """A TrainConfig from a name in configs/train/ or a .toml path, plus top-level overrides."""
+    path = Path(config)
+    if path.suffix != ".toml":
+        path = TRAIN_DIR / f"{config}.toml"
+        if not path.is_file():
+            known = sorted(p.stem for p in TRAIN_DIR.glob("*.toml"))
+            raise ConfigError(f"unknown training config {str(config)!r}; known: {', '.join(known)}")
+    try:
+        with path.open("rb") as file:
+            data = tomllib.load(file)
+    except OSError as error:
+        raise ConfigError(f"cannot read training config {path}: {error}") from None
+    except tomllib.TOMLDecodeError as error:
+        raise ConfigError(f"{path}: not valid TOML: {error}") from None
+    data.setdefault("name", path.stem)
+    data.update({key: value for key, value in overrides.items() if value is not None})
+    return build_config(TrainConfig, data, str(path))

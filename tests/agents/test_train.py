@@ -1,0 +1,126 @@
+"""Smoke runs of the training script: files written and loadable, resume, interrupts keep work."""
+
+import json
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from agents.train import main, train
+from agents.train_config import load_train_config
+from vooga_env.config import ConfigError
+from vooga_env.models import load_model
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_scripted_curriculum_writes_loadable_models(tmp_path):
+    config = load_train_config("smoke")
+    final = train(config, tmp_path, progress=False)
+    assert load_model(final).num_timesteps == config.total_timesteps
+    state = json.loads((tmp_path / "train_state.json").read_text())
+    assert state["num_timesteps"] == config.total_timesteps
+    assert state["opponent"] in config.curriculum.ladder
+    checkpoints = sorted((tmp_path / "checkpoints").glob("*.zip"))
+    assert [p.name for p in checkpoints] == ["ppo_1024_steps.zip", "ppo_2048_steps.zip"]
+    load_model(checkpoints[0])
+
+
+def test_resume_continues_from_the_last_checkpoint(tmp_path):
+    first = load_train_config("smoke", total_timesteps=1024)
+    train(first, tmp_path, progress=False)
+    second = load_train_config("smoke", total_timesteps=2048)
+    final = train(second, tmp_path, resume=True, progress=False)
+    assert load_model(final).num_timesteps == 2048
+    assert (tmp_path / "checkpoints" / "ppo_2048_steps.zip").is_file()
+
+
+def test_selfplay_builds_a_snapshot_pool_with_ratings(tmp_path):
+    path = tmp_path / "selfplay.toml"
+    path.write_text(
+        'mode = "selfplay"\nfight = "small"\ntotal_timesteps = 2048\nn_envs = 2\n'
+        "checkpoint_every = 1024\n[ppo]\nn_steps = 256\nbatch_size = 256\nn_epochs = 1\n"
+        "[selfplay]\nsave_steps = 512\nswap_steps = 256\nwindow = 3\n"
+    )
+    out = tmp_path / "run"
+    train(load_train_config(path), out, progress=False)
+    state = json.loads((out / "train_state.json").read_text())
+    assert 1 < len(state["pool"]) <= 3
+    assert set(state["pool"]) <= set(state["ratings"])
+    for name in state["pool"]:
+        load_model(out / "snapshots" / f"{name}.zip")
+
+
+def test_ctrl_c_keeps_the_last_checkpoint_and_resume_finishes(tmp_path):
+    config = tmp_path / "long.toml"
+    config.write_text(
+        'fight = "small"\ntotal_timesteps = 400000\nn_envs = 2\ncheckpoint_every = 512\n'
+        "[ppo]\nn_steps = 256\nbatch_size = 256\nn_epochs = 1\n"
+    )
+    out = tmp_path / "run"
+    command = [sys.executable, "-m", "agents.train", "--config", str(config), "--out", str(out),
+               "--no-progress"]
+    process = subprocess.Popen(command, cwd=ROOT, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while not (out / "checkpoints" / "ppo_1024_steps.zip").is_file():
+        assert process.poll() is None and time.monotonic() < deadline
+        time.sleep(0.2)
+    process.send_signal(signal.SIGINT)
+    _, stderr = process.communicate(timeout=60)
+    assert process.returncode == 130, stderr
+    assert "--resume" in stderr
+    state = json.loads((out / "train_state.json").read_text())
+    assert state["num_timesteps"] >= 1024
+    assert load_model(out / "latest.zip").num_timesteps == state["num_timesteps"]
+    assert not (out / "final.zip").exists()
+    resumed = load_train_config(config, total_timesteps=state["num_timesteps"] + 512)
+    final = train(resumed, out, resume=True, progress=False)
+    assert load_model(final).num_timesteps == state["num_timesteps"] + 512
+
+
+def test_a_crash_keeps_the_checkpoint(tmp_path, monkeypatch):
+    from stable_baselines3 import PPO
+
+    def crash(self, *args, **kwargs):
+        self.num_timesteps = 77
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(PPO, "learn", crash)
+    with pytest.raises(RuntimeError, match="boom"):
+        train(load_train_config("smoke"), tmp_path, progress=False)
+    assert json.loads((tmp_path / "train_state.json").read_text())["num_timesteps"] == 77
+    assert (tmp_path / "latest.zip").is_file()
+
+
+def test_config_typo_names_the_key(tmp_path):
+    path = tmp_path / "typo.toml"
+    path.write_text("[ppo]\nlearning_rat = 0.1\n")
+    with pytest.raises(ConfigError, match=r"typo\.toml.*'ppo\.learning_rat'"):
+        load_train_config(path)
+    with pytest.raises(ConfigError, match="ladder.*ninja.*rush"):
+        path.write_text('[curriculum]\nladder = ["ninja"]\n')
+        load_train_config(path)
+    with pytest.raises(SystemExit):
+        main(["--config", "no_such_recipe"])
+
+
+def test_the_benchmark_runs_in_quick_mode(tmp_path, capsys):
+    from bench import train_recipe
+
+    assert train_recipe.main(["--quick", "--out", str(tmp_path)]) == 0
+    result = json.loads((tmp_path / "result.json").read_text())
+    vs = result["vs_rush"]
+    assert vs["wins"] + vs["losses"] + vs["draws"] == vs["games"] == 4
+    names = {row["name"] for row in result["elo"]["ratings"]}
+    assert names == {"model", "idle", "random", "rush", "turtle", "zoner", "edge_guard"}
+    assert "Elo (K=16" in capsys.readouterr().out
+
+
+def test_torch_is_the_pinned_cpu_build():
+    import torch
+
+    pinned = (ROOT / "constraints.txt").read_text().split("torch==")[1].split()[0]
+    assert torch.__version__.split("+")[0] == pinned
