@@ -51,7 +51,7 @@ class Collision:
         """Append one kind or a list of kinds; their order is the order reactions run in."""
         if isinstance(kinds, CollisionKind):
             kinds = [kinds]
-        if not isinstance(kinds, Iterable):
+        if isinstance(kinds, (str, bytes)) or not isinstance(kinds, Iterable):
             raise TypeError(f"kinds must be a CollisionKind or a list of them, got {kinds!r}")
         kinds = list(kinds)
         for kind in kinds:
@@ -109,7 +109,9 @@ class Collision:
             for other in open_boxes:
                 if other[4] == box[4] or not (other[3].movable or box[3].movable):
                     continue
-                pairs.append((other, box) if (other[4], other[1]) < (box[4], box[1]) else (box, other))
+                pairs.append(
+                    (other, box) if (other[4], other[1]) < (box[4], box[1]) else (box, other)
+                )
             open_boxes.append(box)
         pairs.sort(key=lambda pair: (pair[0][1], pair[1][1]))
         return [(first[3], second[3]) for first, second in pairs]

@@ -58,7 +58,9 @@ def find_contact(one: SpriteTemplate, two: SpriteTemplate, elapsed_time: float) 
 
     Swept, so a fast sprite cannot pass through a thin one. The axis is the one along which the
     boxes came to overlap last (the face that was crossed); for boxes that already overlap, the axis
-    of least penetration, ties going to the axis of faster relative motion.
+    of least penetration, ties going to the axis of faster relative motion; the normal points
+    from `one`'s centre to `two`'s, or along their relative motion if the centres coincide, or
+    from the older sprite to the newer if neither tells.
     """
     move_x = one.increment_x - two.increment_x
     move_y = one.increment_y - two.increment_y
@@ -81,6 +83,8 @@ def find_contact(one: SpriteTemplate, two: SpriteTemplate, elapsed_time: float) 
             (two.top + two.bottom) - (one.top + one.bottom),
         )[axis]
         toward = centre_gap if centre_gap != 0.0 else (move_x, move_y)[axis]
+        if toward == 0.0:  # centres coincide, no motion: the older sprite is the one behind
+            toward = 1.0 if one.serial < two.serial else -1.0
         return Contact(one, two, axis, 1.0 if toward >= 0.0 else -1.0, 0.0, depth, elapsed_time)
     axis = 0 if entry_x > entry_y else 1
     normal = 1.0 if (move_x, move_y)[axis] > 0.0 else -1.0

@@ -1,4 +1,4 @@
-"""`PhysicsEngine` (the seed's abstract engine) and `FightPhysicsEngine`, its fighting-game engine."""
+"""`PhysicsEngine` (the seed's abstract engine) and `FightPhysicsEngine`, its fighting-game one."""
 
 from __future__ import annotations
 
@@ -13,8 +13,8 @@ from vooga_env.physics.validation import Checked
 class PhysicsEngine(ABC):
     """Turns inputs into pending increments and keeps sprites inside the arena.
 
-    The arena spans x in [0, width] and y in [0, height] px (y grows downwards). Subclasses say how a
-    MotionAction becomes an increment (`process`), how an increment is stored
+    The arena spans x in [0, width] and y in [0, height] px (y grows downwards). Subclasses say how
+    a MotionAction becomes an increment (`process`), how an increment is stored
     (`set_next_location_increment`), and how far a velocity carries a sprite (`displacement`).
     """
 
@@ -32,7 +32,7 @@ class PhysicsEngine(ABC):
 
     @abstractmethod
     def process(self, motion_action: MotionAction, elapsed_time: float) -> None:
-        """Turn `motion_action` into its sprite's pending increment for a frame of `elapsed_time` ms."""
+        """Turn `motion_action` into its sprite's pending increment for `elapsed_time` ms."""
 
     @abstractmethod
     def set_next_location_increment(self, sprite: SpriteTemplate, dx: float, dy: float) -> None:
@@ -46,7 +46,7 @@ class PhysicsEngine(ABC):
         """Start a frame: the sprite's velocity becomes part of its pending increment."""
         self.set_next_location_increment(sprite, sprite.vx * elapsed_time, sprite.vy * elapsed_time)
 
-    def keep_in_bounds(self, sprite: SpriteTemplate) -> None:
+    def keep_in_bounds(self, sprite: SpriteTemplate) -> None:  # noqa: B027 - a no-op by default
         """End a frame: put a sprite that left the arena back inside (the engine's rule)."""
 
     def is_out_left(self, sprite: SpriteTemplate, dx: float = 0.0) -> bool:

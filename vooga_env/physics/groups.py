@@ -1,4 +1,4 @@
-"""`SpriteGroupTemplate`: the sprites of a scene in teams; only sprites of different teams collide."""
+"""`SpriteGroupTemplate`: a scene's sprites in teams; only sprites of different teams collide."""
 
 from __future__ import annotations
 

@@ -110,8 +110,16 @@ class CollisionKindCustom(CollisionKind):
 
     def __init__(self, reactions: Reaction | Iterable[Reaction] | None = None) -> None:
         super().__init__(reactions)
-        self._spec: tuple[type, CollisionKindCustom.Type, CollisionKindCustom.Relation, type,
-                          CollisionKindCustom.Type] | None = None
+        self._spec: (
+            tuple[
+                type,
+                CollisionKindCustom.Type,
+                CollisionKindCustom.Relation,
+                type,
+                CollisionKindCustom.Type,
+            ]
+            | None
+        ) = None
 
     def set_type(
         self,

@@ -22,7 +22,9 @@ class Reaction(ABC):
     """What a collision kind does to the two sprites of a contact."""
 
     @abstractmethod
-    def act(self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, engine: PhysicsEngine) -> None:
+    def act(
+        self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, engine: PhysicsEngine
+    ) -> None:
         """Record this reaction's result in the sprites' responses."""
 
     def __repr__(self) -> str:
@@ -49,7 +51,9 @@ class ReactionForce(Reaction):
         self.force_x2 = validation.finite("force_x2", force_x2)
         self.force_y2 = validation.finite("force_y2", force_y2)
 
-    def act(self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, engine: PhysicsEngine) -> None:
+    def act(
+        self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, engine: PhysicsEngine
+    ) -> None:
         contact = contact_between(sprite_one, sprite_two)
         for sprite, forces in (
             (sprite_one, (self.force_x2, self.force_y2)),
@@ -68,14 +72,19 @@ class ReactionMomentumConservation(Reaction):
     velocity alike (the formula is linear), only while the sprites approach each other.
     """
 
-    def act(self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, engine: PhysicsEngine) -> None:
+    def act(
+        self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, engine: PhysicsEngine
+    ) -> None:
         contact = contact_between(sprite_one, sprite_two)
         separate(sprite_one, sprite_two, contact)
         if not closing(sprite_one, sprite_two, contact):
             return
         axis = contact.axis
         increments = elastic(
-            sprite_one.mass, sprite_two.mass, increment(sprite_one, axis), increment(sprite_two, axis)
+            sprite_one.mass,
+            sprite_two.mass,
+            increment(sprite_one, axis),
+            increment(sprite_two, axis),
         )
         velocities = elastic(
             sprite_one.mass, sprite_two.mass, velocity(sprite_one, axis), velocity(sprite_two, axis)
@@ -104,7 +113,9 @@ class ReactionPunch(Reaction):
         self.up = None if up is None else validation.finite("up", up)
         self.down = None if down is None else validation.finite("down", down)
 
-    def act(self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, engine: PhysicsEngine) -> None:
+    def act(
+        self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, engine: PhysicsEngine
+    ) -> None:
         contact = contact_between(sprite_one, sprite_two)
         axis, normal = contact.axis, contact.normal
         closing_one = increment(sprite_one, axis) * normal
@@ -137,19 +148,28 @@ class ReactionPush(Reaction):
     ground is not pushed into it: the sprite on top just stops moving down.
     """
 
-    def act(self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, engine: PhysicsEngine) -> None:
+    def act(
+        self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, engine: PhysicsEngine
+    ) -> None:
         contact = contact_between(sprite_one, sprite_two)
         separate(sprite_one, sprite_two, contact)
         if not closing(sprite_one, sprite_two, contact):
             return
         axis = contact.axis
         if axis == 1:
-            lower, upper = (sprite_two, sprite_one) if contact.normal > 0.0 else (sprite_one, sprite_two)
+            lower, upper = (
+                (sprite_two, sprite_one) if contact.normal > 0.0 else (sprite_one, sprite_two)
+            )
             if lower.status.on_ground:
-                redirect(upper, contact, min(increment(upper, 1), 0.0), min(velocity(upper, 1), 0.0))
+                redirect(
+                    upper, contact, min(increment(upper, 1), 0.0), min(velocity(upper, 1), 0.0)
+                )
                 return
         common_increment = common(
-            sprite_one.mass, increment(sprite_one, axis), sprite_two.mass, increment(sprite_two, axis)
+            sprite_one.mass,
+            increment(sprite_one, axis),
+            sprite_two.mass,
+            increment(sprite_two, axis),
         )
         common_velocity = common(
             sprite_one.mass, velocity(sprite_one, axis), sprite_two.mass, velocity(sprite_two, axis)
@@ -183,11 +203,15 @@ class ReactionRebound(Reaction):
         self.distance = validation.non_negative("distance", distance)
         self.friction = validation.non_negative("friction", friction)
 
-    def act(self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, engine: PhysicsEngine) -> None:
+    def act(
+        self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, engine: PhysicsEngine
+    ) -> None:
         if isinstance(sprite_one, PlatformBlock) == isinstance(sprite_two, PlatformBlock):
             return
         block, sprite = (
-            (sprite_one, sprite_two) if isinstance(sprite_one, PlatformBlock) else (sprite_two, sprite_one)
+            (sprite_one, sprite_two)
+            if isinstance(sprite_one, PlatformBlock)
+            else (sprite_two, sprite_one)
         )
         if not sprite.movable:
             return
@@ -195,13 +219,17 @@ class ReactionRebound(Reaction):
         axis, normal = contact.axis, contact.normal
         block_edge = _BLOCK_EDGES[(axis, normal)]
         block_start = coordinate(block, axis) + increment(block, axis)
-        surface = block_start - size(sprite, axis) if normal > 0.0 else block_start + size(block, axis)
+        surface = (
+            block_start - size(sprite, axis) if normal > 0.0 else block_start + size(block, axis)
+        )
         block_velocity = velocity(block, axis)
         if getattr(self, block_edge):
             target = surface - normal * self.distance
             sprite.response.bound_position(axis, target, target)
             relative = velocity(sprite, axis) - block_velocity
-            bounced = block_velocity - relative if relative * normal > 0.0 else velocity(sprite, axis)
+            bounced = (
+                block_velocity - relative if relative * normal > 0.0 else velocity(sprite, axis)
+            )
             sprite.response.bound_velocity(axis, bounced, bounced)
         elif normal > 0.0:
             sprite.response.bound_position(axis, high=surface)
@@ -226,7 +254,9 @@ class ReactionStop(Reaction):
     def __init__(self, distance: float = 0.2) -> None:
         self.distance = validation.non_negative("distance", distance)
 
-    def act(self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, engine: PhysicsEngine) -> None:
+    def act(
+        self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, engine: PhysicsEngine
+    ) -> None:
         contact = contact_between(sprite_one, sprite_two)
         axis, normal, when = contact.axis, contact.normal, contact.time_of_impact
         start_one = coordinate(sprite_one, axis) + when * increment(sprite_one, axis)
@@ -321,11 +351,13 @@ def elastic(mass_one: float, mass_two: float, one: float, two: float) -> tuple[f
 def redirect(
     sprite: SpriteTemplate, contact: Contact, increment_after: float, velocity_after: float
 ) -> None:
-    """From the time of impact on, the sprite moves as `increment_after` and keeps `velocity_after`."""
+    """From the time of impact on, the sprite moves as `increment_after`, keeps `velocity_after`."""
     if not sprite.movable:
         return
     axis = contact.axis
-    sprite.response.shift(axis, (1.0 - contact.time_of_impact) * (increment_after - increment(sprite, axis)))
+    sprite.response.shift(
+        axis, (1.0 - contact.time_of_impact) * (increment_after - increment(sprite, axis))
+    )
     sprite.response.change_velocity(axis, velocity_after - velocity(sprite, axis))
 
 

@@ -8,6 +8,7 @@ the two once (the seed's CollisionStatus rule).
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Hashable
 
@@ -16,13 +17,18 @@ from vooga_env.physics.response import PendingResponse
 from vooga_env.physics.status import CollisionStatus
 from vooga_env.physics.validation import Checked
 
+# Creation order, the tie-break for two boxes whose centres coincide (contact.py): unlike the
+# order of teams, it does not change when a scene lists its sprites differently.
+_SERIALS = itertools.count()
+
 
 class SpriteTemplate:
     """A box that moves: position, size, mass, speed, a persistent velocity and its contact status.
 
     `mass` may be `math.inf`: such a sprite is never moved by a reaction (`movable` is False).
     `speed` (px/ms) scales the MotionActions given to the sprite; `gravity_scale` multiplies the
-    engine's gravity for it (0 for sprites that float, such as attack hitboxes).
+    engine's gravity for it (0 for sprites that float, such as attack hitboxes). `serial` is the
+    sprite's creation order.
     """
 
     width = Checked(validation.positive)
@@ -60,6 +66,7 @@ class SpriteTemplate:
         self.response = PendingResponse()
         self.increment_x = 0.0
         self.increment_y = 0.0
+        self.serial = next(_SERIALS)
 
     @property
     def left(self) -> float:
@@ -83,9 +90,9 @@ class SpriteTemplate:
         return self.mass != math.inf
 
     def update(self) -> None:
-        """Apply this frame's result once: the reactions' if the sprite collided, else its increment.
+        """Apply this frame's result once: the reactions' if the sprite collided, else its move.
 
-        Then clear the increment, the reactions' requests and the collision status for the next frame.
+        Then clear the increment, the reactions' requests and the collision status for next frame.
         """
         if self.status.collided:
             self.x, self.vx = self.response.resolve(0, self.x, self.increment_x, self.vx)

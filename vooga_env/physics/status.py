@@ -12,10 +12,10 @@ if TYPE_CHECKING:
 class CollisionStatus:
     """Per-frame contact flags of one sprite, plus the contact with each partner.
 
-    `up`/`down`/`left`/`right` say which of the sprite's own edges touched something; `on_ground` that
-    its bottom edge rests on an immovable sprite (a platform). `contacts` maps each partner to the
-    contact seen from this sprite, so a reaction reads its own pair's geometry rather than flags that
-    another pair produced (the original engine's flags were per sprite only).
+    `up`/`down`/`left`/`right` say which of the sprite's own edges touched something; `on_ground`
+    that its bottom edge rests on an immovable sprite (a platform). `contacts` maps each partner to
+    the contact seen from this sprite, so a reaction reads its own pair's geometry rather than flags
+    that another pair produced (the original engine's flags were per sprite only).
     """
 
     __slots__ = ("left", "right", "up", "down", "on_ground", "contacts")
@@ -42,5 +42,7 @@ class CollisionStatus:
             self.on_ground = True
 
     def __repr__(self) -> str:
-        edges = [name for name in ("left", "right", "up", "down", "on_ground") if getattr(self, name)]
+        edges = [
+            name for name in ("left", "right", "up", "down", "on_ground") if getattr(self, name)
+        ]
         return f"CollisionStatus({', '.join(edges) or 'clear'})"
