@@ -25,7 +25,7 @@ from vooga_env.policies import SCRIPTED
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="python -m agents.evaluate",
-        description="Win rates (95%% Wilson interval) of MODEL against the scripted fighters, "
+        description="Win rates (95% Wilson interval) of MODEL against the scripted fighters, "
         "and its Elo among them.",
     )
     parser.add_argument("model", metavar="MODEL", help="a saved model (.zip) or a scripted name")

@@ -23,7 +23,7 @@ from stable_baselines3 import PPO
 from stable_baselines3.common.callbacks import BaseCallback, CallbackList
 from stable_baselines3.common.env_util import make_vec_env
 from stable_baselines3.common.utils import set_random_seed
-from stable_baselines3.common.vec_env import DummyVecEnv
+from stable_baselines3.common.vec_env import DummyVecEnv, VecEnv, VecNormalize
 
 from agents.callbacks import (
     STATE_FILE,
@@ -37,18 +37,21 @@ from vooga_env.config import ConfigError
 from vooga_env.gym_env import FightEnv
 
 
-def make_envs(config: TrainConfig) -> DummyVecEnv:
+def make_envs(config: TrainConfig) -> VecEnv:
     """`n_envs` single-agent fights in one process; the learner's seat is drawn each episode."""
-    return make_vec_env(
+    envs = make_vec_env(
         FightEnv,
         n_envs=config.n_envs,
         seed=config.seed,
         vec_env_cls=DummyVecEnv,
         env_kwargs={"config": config.fight, "opponent": "idle", "seat": "random"},
     )
+    if config.ppo.normalize_reward:
+        return VecNormalize(envs, norm_obs=False, norm_reward=True, gamma=config.ppo.gamma)
+    return envs
 
 
-def build_model(config: TrainConfig, envs: DummyVecEnv, folder: Path) -> PPO:
+def build_model(config: TrainConfig, envs: VecEnv, folder: Path) -> PPO:
     ppo = config.ppo
     tensorboard = str(folder / "tb") if importlib.util.find_spec("tensorboard") else None
     return PPO(

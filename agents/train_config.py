@@ -2,18 +2,12 @@
 
 from __future__ import annotations
 
-import sys
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from vooga_env.config import CONFIG_DIR, ConfigError, build_config
+from vooga_env.config import CONFIG_DIR, ConfigError, build_config, read_toml
 from vooga_env.policies import SCRIPTED
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
 
 TRAIN_DIR = CONFIG_DIR / "train"
 MODES = ("scripted", "selfplay")
@@ -32,6 +26,7 @@ class PPOConfig:
     ent_coef: float = 0.01
     clip_range: float = 0.2
     net_arch: tuple[int, ...] = (64, 64)
+    normalize_reward: bool = False  # SB3's VecNormalize on rewards only (inference needs nothing)
 
 
 @dataclass(frozen=True)
@@ -103,19 +98,6 @@ class TrainConfig:
 
 def load_train_config(config: str | Path, **overrides: Any) -> TrainConfig:
     """A TrainConfig from a name in configs/train/ or a .toml path, plus top-level overrides."""
-    path = Path(config)
-    if path.suffix != ".toml":
-        path = TRAIN_DIR / f"{config}.toml"
-        if not path.is_file():
-            known = sorted(p.stem for p in TRAIN_DIR.glob("*.toml"))
-            raise ConfigError(f"unknown training config {str(config)!r}; known: {', '.join(known)}")
-    try:
-        with path.open("rb") as file:
-            data = tomllib.load(file)
-    except OSError as error:
-        raise ConfigError(f"cannot read training config {path}: {error}") from None
-    except tomllib.TOMLDecodeError as error:
-        raise ConfigError(f"{path}: not valid TOML: {error}") from None
-    data.setdefault("name", path.stem)
+    data, path = read_toml(config, TRAIN_DIR, "training config")
     data.update({key: value for key, value in overrides.items() if value is not None})
     return build_config(TrainConfig, data, str(path))

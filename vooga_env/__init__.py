@@ -4,14 +4,15 @@
 - `gymnasium.make("vooga_env/Fight-v0", opponent="rush")`: one fighter against a scripted or saved
   opponent (variants: FightWater-v0, FightPlatforms-v0, FightSmall-v0).
 - `vooga_env.physics`: the engine alone (no gymnasium or pettingzoo inside).
+
+The env names load on first use, so that `import vooga_env.physics` needs neither gymnasium nor
+pettingzoo; the Gymnasium ids are registered on `import vooga_env`.
 """
 
-import gymnasium
+from __future__ import annotations
 
-from vooga_env.actions import Action
-from vooga_env.config import ConfigError, FightConfig, load_config
-from vooga_env.gym_env import FightEnv
-from vooga_env.parallel import FightParallelEnv, env, parallel_env, raw_env
+import importlib
+from typing import Any
 
 __version__ = "0.1.0"
 
@@ -21,21 +22,40 @@ GYM_IDS = {
     "vooga_env/FightPlatforms-v0": "platforms",
     "vooga_env/FightSmall-v0": "small",
 }
-for _id, _config in GYM_IDS.items():
-    if _id not in gymnasium.registry:
-        gymnasium.register(
-            _id, entry_point="vooga_env.gym_env:FightEnv", kwargs={"config": _config}
-        )
 
-__all__ = [
-    "Action",
-    "ConfigError",
-    "FightConfig",
-    "FightEnv",
-    "FightParallelEnv",
-    "GYM_IDS",
-    "env",
-    "load_config",
-    "parallel_env",
-    "raw_env",
-]
+_LAZY = {
+    "Action": "vooga_env.actions",
+    "ConfigError": "vooga_env.config",
+    "FightConfig": "vooga_env.config",
+    "load_config": "vooga_env.config",
+    "FightParallelEnv": "vooga_env.parallel",
+    "env": "vooga_env.parallel",
+    "parallel_env": "vooga_env.parallel",
+    "raw_env": "vooga_env.parallel",
+    "FightEnv": "vooga_env.gym_env",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        value = getattr(importlib.import_module(_LAZY[name]), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'vooga_env' has no attribute {name!r}")
+
+
+def _register() -> None:
+    try:
+        import gymnasium
+    except ImportError:  # only the engine is usable without the RL stack; nothing to register
+        return
+    for env_id, config in GYM_IDS.items():
+        if env_id not in gymnasium.registry:
+            gymnasium.register(
+                env_id, entry_point="vooga_env.gym_env:FightEnv", kwargs={"config": config}
+            )
+
+
+_register()
+
+__all__ = ["GYM_IDS", *_LAZY]

@@ -174,24 +174,30 @@ def load_config(config: str | Path | FightConfig = "default", **overrides: Any) 
     """A FightConfig from a name in configs/, a .toml path or a FightConfig, plus overrides."""
     if isinstance(config, FightConfig):
         return config.replace(**overrides) if overrides else config
+    data, path = read_toml(config, CONFIG_DIR, "config")
+    source = f"{path} with overrides {overrides}" if overrides else str(path)
+    return build_config(FightConfig, _merge(data, overrides), source)
+
+
+def read_toml(config: str | Path, folder: Path, what: str) -> tuple[dict[str, Any], Path]:
+    """The table in `config` (a .toml path, or a name in `folder`) with its `name` filled in."""
     if not isinstance(config, (str, Path)):
-        raise ConfigError(f"config must be a name, a path or a FightConfig, got {config!r}")
+        raise ConfigError(f"{what} must be a name or a path, got {config!r}")
     path = Path(config)
     if path.suffix != ".toml":
-        path = CONFIG_DIR / f"{config}.toml"
+        path = folder / f"{config}.toml"
         if not path.is_file():
-            known = sorted(p.stem for p in CONFIG_DIR.glob("*.toml"))
-            raise ConfigError(f"unknown config {str(config)!r}; known: {', '.join(known)}")
+            known = sorted(p.stem for p in folder.glob("*.toml"))
+            raise ConfigError(f"unknown {what} {str(config)!r}; known: {', '.join(known)}")
     try:
         with path.open("rb") as file:
             data = tomllib.load(file)
     except OSError as error:
-        raise ConfigError(f"cannot read config file {path}: {error}") from None
+        raise ConfigError(f"cannot read {what} file {path}: {error}") from None
     except tomllib.TOMLDecodeError as error:
         raise ConfigError(f"{path}: not valid TOML: {error}") from None
     data.setdefault("name", path.stem)
-    source = f"{path} with overrides {overrides}" if overrides else str(path)
-    return build_config(FightConfig, _merge(data, overrides), source)
+    return data, path
 
 
 def _merge(base: Mapping[str, Any], changes: Mapping[str, Any]) -> dict[str, Any]:
@@ -252,6 +258,10 @@ def _convert(hint: Any, value: Any, source: str, key: str) -> Any:
         return tuple(
             _convert(item_hint, item, source, f"{key}[{index}]") for index, item in enumerate(value)
         )
+    if hint is bool:
+        if not isinstance(value, bool):
+            raise ConfigError(f"{source}: {key} must be true or false, got {value!r}")
+        return value
     if hint is float:
         if (
             isinstance(value, bool)

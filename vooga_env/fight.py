@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from vooga_env.actions import ATTACKS, JUMPS, WALK, Action
-from vooga_env.config import FightConfig, spawn_block
+from vooga_env.config import AttackConfig, FightConfig, spawn_block
 from vooga_env.hits import Fighter, Hit, ReactionHit, hit_kind
 from vooga_env.physics import (
     CollisionKind,
@@ -59,6 +59,15 @@ class StepEvents:
     rung_out: list[bool] = field(default_factory=lambda: [False, False])
     knocked_out: list[bool] = field(default_factory=lambda: [False, False])
     over: bool = False
+
+
+def hitbox_box(
+    fighter: Fighter, attack: AttackConfig, facing: float
+) -> tuple[float, float, float, float]:
+    """(x, y, width, height) of an attack's hitbox: out of the front edge, placed from the feet."""
+    x = fighter.right if facing > 0 else fighter.left - attack.hitbox_width
+    y = fighter.bottom - fighter.config.height + attack.offset_y
+    return x, y, attack.hitbox_width, attack.hitbox_height
 
 
 class Fight:
@@ -233,10 +242,22 @@ class Fight:
             attack.startup <= fighter.move_frame < attack.startup + attack.active
         )
         if hitbox.active:
-            hitbox.width = attack.hitbox_width
-            hitbox.height = attack.hitbox_height
-            hitbox.x = fighter.right if fighter.facing > 0 else fighter.left - attack.hitbox_width
-            hitbox.y = fighter.bottom - fighter.config.height + attack.offset_y
+            hitbox.x, hitbox.y, hitbox.width, hitbox.height = hitbox_box(
+                fighter, attack, fighter.facing
+            )
+
+    def in_reach(self, attacker: Fighter, move: str) -> bool:
+        """Would `move`, started now towards the opponent, overlap the opponent where it stands?"""
+        defender = self.fighters[1 - attacker.index]
+        toward = (defender.x + defender.width / 2) - (attacker.x + attacker.width / 2)
+        facing = attacker.facing if toward == 0.0 else (1.0 if toward > 0.0 else -1.0)
+        x, y, width, height = hitbox_box(attacker, getattr(attacker.config, move), facing)
+        return (
+            x < defender.right
+            and defender.left < x + width
+            and y < defender.bottom
+            and defender.top < y + height
+        )
 
     def _advance(self, fighter: Fighter) -> None:
         """Count down stun and move frames after a physics frame."""

@@ -47,7 +47,7 @@ class EpisodeRecord:
     `damage_dealt[i]`: health points fighter i took off the other. `health`, `stocks` and
     `positions` (top-left x, y in px) are the final state. `winner` is "fighter_0", "fighter_1" or
     "draw", or None when the episode was stopped before its end. `actions[t]` is the pair of
-    actions of step t; `observations[t]` the (2, 37) observations before step t (the last one:
+    actions of step t; `observations[t]` the (2, 41) observations before step t (the last one:
     after the last step).
     """
 

@@ -31,6 +31,8 @@ FIGHTER_FEATURES = (
     "hitbox_active",
     "hitstun",  # frames left / 20
     "stocks",  # / starting stocks
+    "punch_reach",  # 1 if a punch started now would touch the other fighter where it stands
+    "kick_reach",  # likewise for a kick
 )
 GLOBAL_FEATURES = (
     "stage_left",  # own centre minus the stage edge on own frame's left, / arena width
@@ -54,8 +56,8 @@ def observe(fight: Fight, index: int) -> np.ndarray:
     side = SIDES[index]
     arena = fight.config.arena
     half_width, half_height = arena.width / 2.0, arena.height / 2.0
-    own = _fighter(me, side, half_width, half_height, fight.config.stocks)
-    opponent = _fighter(other, side, half_width, half_height, fight.config.stocks)
+    own = _fighter(fight, me, side, half_width, half_height)
+    opponent = _fighter(fight, other, side, half_width, half_height)
     opponent[0] -= own[0]
     opponent[1] -= own[1]
     centre = me.x + me.width / 2.0
@@ -68,7 +70,7 @@ def observe(fight: Fight, index: int) -> np.ndarray:
 
 
 def _fighter(
-    fighter: Fighter, side: float, half_width: float, half_height: float, stocks: int
+    fight: Fight, fighter: Fighter, side: float, half_width: float, half_height: float
 ) -> list[float]:
     config = fighter.config
     attack = fighter.attack
@@ -92,5 +94,7 @@ def _fighter(
         progress,
         float(fighter.hitbox.active),
         fighter.hitstun / HITSTUN_SCALE,
-        fighter.stocks / stocks,
+        fighter.stocks / fight.config.stocks,
+        float(fight.in_reach(fighter, "punch")),
+        float(fight.in_reach(fighter, "kick")),
     ]

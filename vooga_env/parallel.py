@@ -32,11 +32,12 @@ class FightParallelEnv(ParallelEnv):
     action is repeated for `frame_skip` physics frames of `frame_time` ms.
 
     ## Observation Space
-    `Box(-2, 2, (37,), float32)`, ego-centric and mirrored (`vooga_env.observations`): 17 features
+    `Box(-2, 2, (41,), float32)`, ego-centric and mirrored (`vooga_env.observations`): 19 features
     of the fighter itself (x, y, vx, vy, facing, health, damage_taken, on_ground, jumps_left,
-    punching, kicking, blocking, crouching, move_progress, hitbox_active, hitstun, stocks), the same
-    17 of the opponent (its x and y relative to the fighter's), then the distances to the stage's
-    left and right edges and the fraction of time left. `OBSERVATION_NAMES` names every index.
+    punching, kicking, blocking, crouching, move_progress, hitbox_active, hitstun, stocks,
+    punch_reach, kick_reach), the same 19 of the opponent (its x and y relative to the fighter's),
+    then the distances to the stage's left and right edges and the fraction of time left.
+    `OBSERVATION_NAMES` names every index.
 
     ## Rewards
     Per step (`configs/*.toml` [rewards]): `damage` * (damage dealt - damage taken) / max health,

@@ -18,10 +18,6 @@ from vooga_env.actions import Action
 from vooga_env.observations import OBSERVATION_NAMES
 
 _I = {name: index for index, name in enumerate(OBSERVATION_NAMES)}
-# Reach, as centre-to-centre x distance in half-arena widths (the observation's unit), on the
-# default fighter: the punch's hitbox reaches 68 px (0.17), the kick's 80 px (0.2).
-PUNCH_RANGE = 0.15
-KICK_RANGE = 0.19
 
 
 class Policy:
@@ -85,6 +81,11 @@ def _gap(observation: np.ndarray) -> float:
     return float(observation[_I["opponent_x"]])
 
 
+def _reach(observation: np.ndarray, who: str, move: str) -> bool:
+    """Would `who`'s ('self' or 'opponent') `move`, started now, touch the other fighter?"""
+    return bool(observation[_I[f"{who}_{move}_reach"]])
+
+
 def _toward(gap: float) -> int:
     return Action.RIGHT if gap > 0 else Action.LEFT
 
@@ -115,12 +116,11 @@ class Rush(Scripted):
         recover = _recover(observation)
         if recover is not None:
             return recover
-        gap = _gap(observation)
-        if abs(gap) < PUNCH_RANGE:
+        if _reach(observation, "self", "punch"):
             return Action.PUNCH
-        if abs(gap) < KICK_RANGE and self.rng.random() < 0.5:
+        if _reach(observation, "self", "kick") and self.rng.random() < 0.5:
             return Action.KICK
-        return _toward(gap)
+        return _toward(_gap(observation))
 
 
 class Turtle(Scripted):
@@ -132,17 +132,15 @@ class Turtle(Scripted):
         recover = _recover(observation)
         if recover is not None:
             return recover
-        gap = _gap(observation)
-        if abs(gap) >= KICK_RANGE:
-            return _toward(gap)
+        if not _reach(observation, "self", "kick"):
+            return _toward(_gap(observation))
+        punch = _reach(observation, "self", "punch")
         attacking = observation[_I["opponent_punching"]] or observation[_I["opponent_kicking"]]
         if attacking and observation[_I["opponent_move_progress"]] < 0.6:
             return Action.BLOCK
-        if attacking or observation[_I["opponent_hitstun"]] > 0:
-            return Action.PUNCH if abs(gap) < PUNCH_RANGE else Action.KICK
-        if self.rng.random() < 0.7:
-            return Action.BLOCK
-        return Action.PUNCH if abs(gap) < PUNCH_RANGE else Action.KICK
+        if attacking or observation[_I["opponent_hitstun"]] > 0 or self.rng.random() >= 0.7:
+            return Action.PUNCH if punch else Action.KICK
+        return Action.BLOCK
 
 
 class Zoner(Scripted):
@@ -156,9 +154,9 @@ class Zoner(Scripted):
             return recover
         gap = _gap(observation)
         behind = observation[_I["stage_left"]] if gap > 0 else observation[_I["stage_right"]]
-        if abs(gap) < PUNCH_RANGE and behind > 0.08:
+        if _reach(observation, "self", "punch") and behind > 0.08:
             return _away(gap)
-        if abs(gap) < KICK_RANGE:
+        if _reach(observation, "self", "kick"):
             return Action.KICK
         return _toward(gap)
 
@@ -179,11 +177,12 @@ class EdgeGuard(Scripted):
         own_offset = (observation[_I["stage_left"]] - observation[_I["stage_right"]]) / 2
         opponent_offset = own_offset + gap / 2  # both in arena widths, > 0: right of centre
         pressing = gap * opponent_offset > 0
-        if abs(gap) < KICK_RANGE:
+        if _reach(observation, "self", "kick"):
             attacking = observation[_I["opponent_punching"]] or observation[_I["opponent_kicking"]]
             if attacking and not pressing:
                 return Action.BLOCK
-            return Action.KICK if pressing or abs(gap) >= PUNCH_RANGE else Action.PUNCH
+            punch = _reach(observation, "self", "punch")
+            return Action.KICK if pressing or not punch else Action.PUNCH
         if pressing or abs(own_offset) < 0.05:
             return _toward(gap)
         return Action.LEFT if own_offset > 0 else Action.RIGHT

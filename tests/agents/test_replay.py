@@ -68,8 +68,8 @@ def test_file_holds_what_it_says(game):
 def test_a_changed_seed_or_action_is_caught(game):
     _, _, path = game
     replay = Replay.load(path)
-    replay.seed += 1  # another spawn jitter: another game
-    with pytest.raises(ReplayMismatch, match="positions"):
+    replay.seed += 1  # another spawn jitter: another game, however it comes to differ
+    with pytest.raises(ReplayMismatch):
         play_back(replay)
     replay = Replay.load(path)
     replay.actions[0] = (replay.actions[0][0], (replay.actions[0][1] + 5) % 10)
