@@ -2,7 +2,7 @@
 
 Each test states the behaviour the issue asks for and fails today; they are marked strict xfail
 so that the suite stays green while the defect is open and turns red the day it is fixed (then
-drop the mark). All four defects share one root cause: contacts are found once per frame from the
+drop the mark). The open defects share one root cause: contacts are found once per frame from the
 pending increments and each pair's reaction is worked out on its own, so what one reaction does to
 a sprite is never checked against that sprite's other contacts (no iteration, no axis ordering).
 """
@@ -53,12 +53,6 @@ def test_crossing_the_seam_between_two_floor_blocks(how):
     assert fighter.left > right.left  # it got across
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=AssertionError,
-    reason="friction is applied once per supporting block and summed, so a fighter standing on "
-    "two blocks overshoots zero and its vx flips sign every frame",
-)
 def test_friction_on_two_blocks_never_reverses_sliding():
     left = PlatformBlock(0.0, 400.0, 133.0, 20.0)
     right = PlatformBlock(133.0, 400.0, 300.0, 20.0)

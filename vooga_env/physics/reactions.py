@@ -239,9 +239,13 @@ class ReactionRebound(Reaction):
             sprite.response.bound_velocity(axis, low=block_velocity)
         if self.friction > 0.0:
             along = 1 - axis
-            sliding = velocity(sprite, along) - velocity(block, along)
-            slowdown = min(abs(sliding), self.friction * contact.elapsed_time)
-            push_velocity(sprite, contact, along, -math.copysign(slowdown, sliding), engine)
+            rest = (1.0 - contact.time_of_impact) * contact.elapsed_time
+            sprite.response.slow_down(
+                along,
+                self.friction * contact.elapsed_time,
+                velocity(block, along),
+                engine.displacement(1.0, rest),
+            )
 
 
 class ReactionStop(Reaction):

@@ -16,13 +16,14 @@ AXES = (0, 1)  # 0 = x (right), 1 = y (down)
 class PendingResponse:
     """Accumulated reaction results for one sprite and one frame; see the module docstring."""
 
-    __slots__ = ("shifts", "velocity_changes", "position_bounds", "velocity_bounds")
+    __slots__ = ("shifts", "velocity_changes", "position_bounds", "velocity_bounds", "friction")
 
     def __init__(self) -> None:
         self.shifts: tuple[list[float], list[float]] = ([], [])
         self.velocity_changes: tuple[list[float], list[float]] = ([], [])
         self.position_bounds = [[-math.inf, math.inf], [-math.inf, math.inf]]
         self.velocity_bounds = [[-math.inf, math.inf], [-math.inf, math.inf]]
+        self.friction = [(0.0, 0.0, 0.0), (0.0, 0.0, 0.0)]
 
     def reset(self) -> None:
         """Forget this frame's requests."""
@@ -31,6 +32,7 @@ class PendingResponse:
             self.velocity_changes[axis].clear()
             self.position_bounds[axis][:] = (-math.inf, math.inf)
             self.velocity_bounds[axis][:] = (-math.inf, math.inf)
+            self.friction[axis] = (0.0, 0.0, 0.0)
 
     def shift(self, axis: int, pixels: float) -> None:
         """Move the sprite `pixels` further along `axis` this frame, on top of its increment."""
@@ -54,17 +56,32 @@ class PendingResponse:
         bounds[0] = max(bounds[0], low)
         bounds[1] = min(bounds[1], high)
 
+    def slow_down(self, axis: int, amount: float, reference: float, carry: float) -> None:
+        """Bring the velocity along `axis` up to `amount` px/ms closer to `reference`, once.
+
+        `carry` (ms) is how far a change of 1 px/ms moves the sprite in the rest of the frame.
+        Friction from several surfaces at once counts once (the strongest), so a sprite standing
+        across two blocks is not slowed twice and never overshoots into reverse.
+        """
+        self.friction[axis] = max(self.friction[axis], (amount, -reference, carry))
+
     def resolve(
         self, axis: int, position: float, increment: float, velocity: float
     ) -> tuple[float, float]:
         """The final (coordinate, velocity) along `axis` given this frame's start and increment."""
+        new_velocity = math.fsum([velocity, *self.velocity_changes[axis]])
+        amount, reference, carry = self.friction[axis]
+        slide = 0.0
+        if amount > 0.0:
+            sliding = new_velocity + reference
+            slowed = -reference + math.copysign(max(abs(sliding) - amount, 0.0), sliding)
+            slide = (slowed - new_velocity) * carry
+            new_velocity = slowed
         new_position = _within(
-            math.fsum([position, increment, *self.shifts[axis]]), self.position_bounds[axis]
+            math.fsum([position, increment, slide, *self.shifts[axis]]),
+            self.position_bounds[axis],
         )
-        new_velocity = _within(
-            math.fsum([velocity, *self.velocity_changes[axis]]), self.velocity_bounds[axis]
-        )
-        return new_position, new_velocity
+        return new_position, _within(new_velocity, self.velocity_bounds[axis])
 
 
 def _within(value: float, bounds: list[float]) -> float:
