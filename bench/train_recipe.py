@@ -1,11 +1,13 @@
 """The shipped training recipe, measured: train it, then fight it against every scripted fighter.
 
     python -m bench.train_recipe [--config default] [--minutes 15] [--games 200] [--out runs/recipe]
-    python -m bench.train_recipe --quick      # seconds: proves the path works (CI runs this)
+    python -m bench.train_recipe --config selfplay    # also: latest vs first snapshot
+    python -m bench.train_recipe --quick [--selfplay] # seconds: proves the path works (CI)
 
 Prints the model's win rate against `rush` over `--games` games (with a 95% Wilson interval) and
 an Elo round-robin of the model and every scripted fighter, and writes both to OUT/result.json.
-The claim it checks (issue 4): >= 80% against rush, and a higher Elo than every scripted fighter.
+The claims it checks (issue 4): >= 80% against rush and a higher Elo than every scripted fighter;
+for self-play, the latest snapshot beats the first in >= 70% of games.
 """
 
 from __future__ import annotations
@@ -14,34 +16,54 @@ import argparse
 import json
 import time
 from pathlib import Path
+from typing import Any
 
 from agents.train import train
 from agents.train_config import load_train_config
 from vooga_env.elo import K_FACTOR, START_RATING, round_robin
-from vooga_env.match import run_match, wilson_interval
+from vooga_env.match import MatchResult, run_match, wilson_interval
 from vooga_env.policies import SCRIPTED
 
 
-def measure(model: Path, games: int, round_robin_games: int, seed: int = 12345) -> dict:
-    """Win rate against rush, and Elo among all the scripted fighters."""
-    match = run_match(str(model), "rush", games, seed, names=("model", "rush"))
-    wins = match.sides[0].wins
-    low, high = wilson_interval(wins, match.games)
-    tournament = round_robin(
-        {"model": str(model), **{name: name for name in SCRIPTED}}, round_robin_games, seed
-    )
-    ratings = tournament.table.to_dict()
+def summary(match: MatchResult) -> dict[str, Any]:
+    """The first side's results in a match, with a 95% Wilson interval on its win rate."""
+    side = match.sides[0]
+    low, high = wilson_interval(side.wins, match.games)
     return {
-        "vs_rush": {
-            "games": match.games,
-            "wins": wins,
-            "losses": match.sides[0].losses,
-            "draws": match.sides[0].draws,
-            "win_rate": wins / match.games,
-            "wilson95": [low, high],
-        },
-        "elo": ratings,
+        "games": match.games,
+        "wins": side.wins,
+        "losses": side.losses,
+        "draws": side.draws,
+        "win_rate": side.wins / match.games,
+        "wilson95": [low, high],
     }
+
+
+def first_snapshot(folder: Path) -> Path | None:
+    """A self-play run's first snapshot (the untrained network), if there is one."""
+    snapshots = sorted(folder.glob("snapshots/snapshot_*.zip"), key=lambda p: int(p.stem[9:]))
+    return snapshots[0] if snapshots else None
+
+
+def measure(model: Path, games: int, round_robin_games: int, seed: int = 12345) -> dict[str, Any]:
+    """Against rush, Elo among the scripted fighters, and (self-play) against the first snapshot."""
+    result: dict[str, Any] = {}
+    first = first_snapshot(model.parent)
+    if first is not None:
+        match = run_match(str(model), str(first), games, seed, names=("latest", "first"))
+        result["vs_first_snapshot"] = summary(match)
+    result["vs_rush"] = summary(run_match(str(model), "rush", games, seed, names=("model", "rush")))
+    entrants = {"model": str(model), **{name: name for name in SCRIPTED}}
+    result["elo"] = round_robin(entrants, round_robin_games, seed).table.to_dict()
+    return result
+
+
+def describe(label: str, result: dict[str, Any]) -> str:
+    low, high = result["wilson95"]
+    return (
+        f"{label}: {result['wins']}/{result['games']} wins ({result['win_rate']:.0%}, "
+        f"95% CI {low:.0%}-{high:.0%}), {result['draws']} draws"
+    )
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -51,10 +73,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--games", type=int, default=200)
     parser.add_argument("--round-robin-games", type=int, default=40)
     parser.add_argument("--out", type=Path, default=Path("runs/recipe"))
-    parser.add_argument("--quick", action="store_true", help="the smoke config and a few games")
+    parser.add_argument("--quick", action="store_true", help="a smoke config and a few games")
+    parser.add_argument("--selfplay", action="store_true", help="with --quick: the self-play path")
     args = parser.parse_args(argv)
     if args.quick:
-        args.config, args.minutes, args.games, args.round_robin_games = "smoke", 1.0, 4, 2
+        args.config = "smoke_selfplay" if args.selfplay else "smoke"
+        args.minutes, args.games, args.round_robin_games = 1.0, 4, 2
     config = load_train_config(args.config)
     start = time.monotonic()
     model = train(config, args.out, progress=not args.quick, minutes=args.minutes)
@@ -65,15 +89,11 @@ def main(argv: list[str] | None = None) -> int:
         **measure(model, args.games, args.round_robin_games),
     }
     (args.out / "result.json").write_text(json.dumps(result, indent=2))
-    vs = result["vs_rush"]
     print(f"trained {config.name} for {trained / 60:.1f} min")
-    print(
-        f"vs rush: {vs['wins']}/{vs['games']} wins ({vs['win_rate']:.0%}, 95% CI "
-        f"{vs['wilson95'][0]:.0%}-{vs['wilson95'][1]:.0%}), {vs['draws']} draws"
-    )
-    print(
-        f"Elo (K={K_FACTOR:g}, start {START_RATING:g}, {args.round_robin_games} games a pairing):"
-    )
+    if "vs_first_snapshot" in result:
+        print(describe("latest vs first snapshot", result["vs_first_snapshot"]))
+    print(describe("vs rush", result["vs_rush"]))
+    print(f"Elo (K={K_FACTOR:g}, start {START_RATING:g}, {args.round_robin_games} games a pairing):")
     for row in result["elo"]["ratings"]:
         print(f"  {row['name']:<12} {row['rating']:7.1f}")
     print(f"wrote {args.out / 'result.json'}")

@@ -119,6 +119,16 @@ def test_the_benchmark_runs_in_quick_mode(tmp_path, capsys):
     assert "Elo (K=16" in capsys.readouterr().out
 
 
+def test_the_selfplay_benchmark_measures_latest_against_first(tmp_path):
+    from bench import train_recipe
+
+    assert train_recipe.main(["--quick", "--selfplay", "--out", str(tmp_path)]) == 0
+    result = json.loads((tmp_path / "result.json").read_text())
+    first = result["vs_first_snapshot"]
+    assert first["wins"] + first["losses"] + first["draws"] == first["games"] == 4
+    assert train_recipe.first_snapshot(tmp_path).name == "snapshot_0.zip"
+
+
 def test_torch_is_the_pinned_cpu_build():
     import torch
 
