@@ -133,13 +133,15 @@ class RewardConfig:
     """Reward weights. Zero-sum unless `time_penalty` is set (it is charged to both fighters).
 
     Per step: `damage` * (damage dealt - damage taken) / health, `ring_out` for ringing the
-    opponent out (minus for being rung out), `ko` likewise for a knock-out, minus `time_penalty`.
+    opponent out (minus for being rung out), `ko` likewise for a knock-out, minus `time_penalty`,
+    plus `edge` times the change in stage room over the opponent's (see HitAndRingOutReward).
     """
 
     damage: float = 1.0
     ring_out: float = 5.0
     ko: float = 5.0
     time_penalty: float = 0.0
+    edge: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -306,7 +308,7 @@ _NON_NEGATIVE = {
         "block_damage",
         "block_knockback",
     ),
-    RewardConfig: ("damage", "ring_out", "ko", "time_penalty"),
+    RewardConfig: ("damage", "ring_out", "ko", "time_penalty", "edge"),
 }
 
 

@@ -112,6 +112,9 @@ class FightParallelEnv(ParallelEnv):
                 raise ValueError(f"seed must be a non-negative int or None, got {seed!r}")
             self._np_random, _ = seeding.np_random(int(seed))
         self.fight.reset(self._np_random)
+        reset_reward = getattr(self.reward_fn, "reset", None)
+        if reset_reward is not None:
+            reset_reward(self.fight)
         self.agents = list(self.possible_agents)
         observations = self._observations()
         infos = {agent: self._info(index) for index, agent in enumerate(self.possible_agents)}

@@ -9,7 +9,8 @@ from vooga_env.fight import Fight, StepEvents
 
 
 class RewardFn(Protocol):
-    """Maps one step's events to one reward per fighter index."""
+    """Maps one step's events to one reward per fighter index (an optional `reset(fight)` is
+    called when an episode starts)."""
 
     def __call__(self, fight: Fight, events: StepEvents) -> tuple[float, float]: ...
 
@@ -17,22 +18,43 @@ class RewardFn(Protocol):
 class HitAndRingOutReward:
     """Damage dealt minus damage taken (over max health), +/- a bonus for ring-outs and KOs.
 
+    `edge` adds potential-based shaping: each step, the change in (own room to the nearer stage
+    edge - the opponent's room), over the stage width. It telescopes over an episode, so it leaves
+    the best policy unchanged while saying early that being driven to the edge is bad.
     Zero-sum when `time_penalty` is 0: whatever one fighter gains, the other loses.
     """
 
     def __init__(self, config: RewardConfig) -> None:
         self.config = config
+        self._potential = 0.0
+
+    def reset(self, fight: Fight) -> None:
+        self._potential = self._edge_advantage(fight)
 
     def __call__(self, fight: Fight, events: StepEvents) -> tuple[float, float]:
         config = self.config
         health = fight.config.fighter.health
+        shaping = 0.0
+        if config.edge:
+            potential = self._edge_advantage(fight)
+            shaping = config.edge * (potential - self._potential)
+            self._potential = potential
         rewards = []
-        for me, other in ((0, 1), (1, 0)):
+        for me, other, sign in ((0, 1, 1.0), (1, 0, -1.0)):
             reward = config.damage * (events.damage_dealt[me] - events.damage_taken[me]) / health
             reward += config.ring_out * (events.rung_out[other] - events.rung_out[me])
             reward += config.ko * (events.knocked_out[other] - events.knocked_out[me])
-            rewards.append(reward - config.time_penalty)
+            rewards.append(reward + sign * shaping - config.time_penalty)
         return rewards[0], rewards[1]
+
+    @staticmethod
+    def _edge_advantage(fight: Fight) -> float:
+        """fighter_0's room to its nearer stage edge minus fighter_1's, over the stage width."""
+        rooms = []
+        for fighter in fight.fighters:
+            centre = fighter.x + fighter.width / 2.0
+            rooms.append(min(centre - fight.stage_left, fight.stage_right - centre))
+        return (rooms[0] - rooms[1]) / (fight.stage_right - fight.stage_left)
 
     def __repr__(self) -> str:
         return f"HitAndRingOutReward({self.config!r})"
