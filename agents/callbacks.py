@@ -12,8 +12,8 @@ import numpy as np
 from stable_baselines3.common.callbacks import BaseCallback, CheckpointCallback
 
 from agents.train_config import CurriculumConfig, SelfPlayConfig
-from vooga_env.elo import START_RATING, expected_score, update
-from vooga_env.models import FrozenPolicy
+from vooga_env.elo import START_RATING, update
+from vooga_env.models import FrozenPolicy, load_model
 
 STATE_FILE = "train_state.json"
 
@@ -85,8 +85,9 @@ class CurriculumCallback(BaseCallback):
 class SelfPlayCallback(BaseCallback):
     """A pool of frozen snapshots of the learner; each env's opponent redrawn every swap_steps.
 
-    Elo: the learner and every snapshot are rated from the learner's games; a new snapshot starts
-    at the learner's rating. The ratings are logged and kept with the checkpoints.
+    Elo: the learner, every snapshot and the scripted fighters are rated from the learner's games;
+    a new snapshot starts at the learner's rating. The ratings are logged and kept with the
+    checkpoints.
     """
 
     def __init__(
@@ -99,6 +100,8 @@ class SelfPlayCallback(BaseCallback):
         state = state or {}
         self.pool: list[str] = state.get("pool", [])
         self.ratings: dict[str, float] = state.get("ratings", {"learner": START_RATING})
+        for name in config.scripted:  # fixed anchors: the learner's games against them count too
+            self.ratings.setdefault(name, START_RATING)
         self.last_save = state.get("last_save", 0)
         self.last_swap = -self.config.swap_steps
         self._frozen: dict[str, FrozenPolicy] = {}
@@ -131,12 +134,11 @@ class SelfPlayCallback(BaseCallback):
         self.pool.append(name)
         self.ratings.setdefault(name, self.ratings["learner"])
         self.pool = self.pool[-self.config.window :]
+        self._frozen = {key: policy for key, policy in self._frozen.items() if key in self.pool}
         self.last_save = self.num_timesteps
 
     def _frozen_policy(self, name: str) -> FrozenPolicy:
         if name not in self._frozen:
-            from vooga_env.models import load_model
-
             self._frozen[name] = FrozenPolicy(
                 load_model(self.folder / f"{name}.zip"), name, deterministic=False
             )
@@ -162,9 +164,6 @@ class SelfPlayCallback(BaseCallback):
 
     def state(self) -> dict[str, Any]:
         return {"pool": self.pool, "ratings": self.ratings, "last_save": self.last_save}
-
-    def expected_against(self, name: str) -> float:
-        return expected_score(self.ratings["learner"], self.ratings[name])
 
 
 class StateCheckpointCallback(CheckpointCallback):
