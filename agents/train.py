@@ -91,7 +91,10 @@ def train(
     progress: bool = True,
     minutes: float | None = None,
 ) -> Path:
-    """Run (or continue) one training, for at most `minutes`; returns the final model's path."""
+    """Run (or continue) one training for at most `minutes` (default: the config's budget).
+
+    Returns the final model's path.
+    """
     torch.set_num_threads(1)
     set_random_seed(config.seed)
     folder.mkdir(parents=True, exist_ok=True)
@@ -113,6 +116,7 @@ def train(
         opponents = CurriculumCallback(config.curriculum, config.seed, state.get("stage", 0))
     every = max(config.checkpoint_every // config.n_envs, 1)
     checkpoints = StateCheckpointCallback(every, folder, [opponents])
+    minutes = minutes or config.minutes
     callbacks = [opponents, checkpoints] + ([StopAfter(minutes)] if minutes else [])
     remaining = config.total_timesteps - model.num_timesteps
     try:

@@ -81,6 +81,7 @@ class TrainConfig:
     total_timesteps: int = 1_000_000
     n_envs: int = 8
     seed: int = 0
+    minutes: float = 0.0  # wall-time budget; training stops there (0: no budget)
     checkpoint_every: int = 50_000
     eval_games: int = 200
     ppo: PPOConfig = PPOConfig()

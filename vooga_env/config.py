@@ -137,11 +137,11 @@ class RewardConfig:
     plus `edge` times the change in stage room over the opponent's (see HitAndRingOutReward).
     """
 
-    damage: float = 1.0
+    damage: float = 5.0
     ring_out: float = 5.0
     ko: float = 5.0
     time_penalty: float = 0.0
-    edge: float = 0.0
+    edge: float = 2.0
 
 
 @dataclass(frozen=True)

@@ -40,10 +40,13 @@ class FightParallelEnv(ParallelEnv):
     `OBSERVATION_NAMES` names every index.
 
     ## Rewards
-    Per step (`configs/*.toml` [rewards]): `damage` * (damage dealt - damage taken) / max health,
-    `+ring_out` for ringing the opponent out and `-ring_out` for being rung out, `ko` likewise for
-    knock-outs, minus `time_penalty`. Zero-sum by default. `infos` carry the step's events
-    (hits landed, damage dealt and taken, ring-out, KO) and, at the end, the `winner`.
+    Per step (`configs/*.toml` [rewards]): `damage` (5) * (damage dealt - damage taken) / max
+    health, `+ring_out` (5) for ringing the opponent out and `-ring_out` for being rung out, `ko`
+    (5) likewise for knock-outs, plus `edge` (2) times the change in the fighter's room to its
+    nearer stage edge minus the opponent's, over the stage width (potential-based shaping: it
+    telescopes, so the best policy is unchanged), minus `time_penalty` (0). Zero-sum by default.
+    `infos` carry the step's events (hits landed, damage dealt and taken, ring-out, KO) and, at
+    the end, the `winner`.
 
     ## Episode End
     Both fighters terminate in the same step when one loses its last stock (a ring-out: falling

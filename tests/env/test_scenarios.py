@@ -9,8 +9,11 @@ PUNCH, KICK, BLOCK, IDLE = Action.PUNCH, Action.KICK, Action.BLOCK, Action.IDLE
 
 
 def face_off(gap, **overrides):
-    """Both fighters standing on the stage, `gap` px between them, fighter_0 on the left."""
-    env = vooga_env.parallel_env(**overrides)
+    """Both fighters standing on the stage, `gap` px between them, fighter_0 on the left.
+
+    Without the edge shaping, so that rewards are the hits' and ring-outs' alone.
+    """
+    env = vooga_env.parallel_env(rewards={"edge": 0.0}, **overrides)
     env.reset(seed=0)
     one, two = env.fight.fighters
     two.x = one.right + gap
@@ -40,8 +43,13 @@ def test_a_punch_that_connects_deals_its_damage_once():
     infos += more
     assert sum(info["fighter_0"]["hits_landed"] for info in infos) == 1
     assert two.health == health - punch.damage
-    assert totals["fighter_0"] + totals_after["fighter_0"] == pytest.approx(punch.damage / health)
-    assert totals["fighter_1"] + totals_after["fighter_1"] == pytest.approx(-punch.damage / health)
+    weight = env.config.rewards.damage
+    assert totals["fighter_0"] + totals_after["fighter_0"] == pytest.approx(
+        weight * punch.damage / health
+    )
+    assert totals["fighter_1"] + totals_after["fighter_1"] == pytest.approx(
+        -weight * punch.damage / health
+    )
 
 
 def test_an_attack_out_of_reach_deals_nothing():
@@ -95,7 +103,7 @@ def test_a_fighter_knocked_past_the_edge_falls_and_is_rung_out():
     assert last["fighter_0"]["winner"] == "fighter_0"
     assert not env.agents
     ring_out = env.config.rewards.ring_out
-    damage = env.config.fighter.kick.damage / env.config.fighter.health
+    damage = env.config.rewards.damage * env.config.fighter.kick.damage / env.config.fighter.health
     assert totals["fighter_0"] == pytest.approx(ring_out + damage)
     assert totals["fighter_1"] == pytest.approx(-ring_out - damage)
     assert two.y > env.config.arena.height
