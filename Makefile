@@ -5,12 +5,12 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 ARGS ?=
 
-.PHONY: demo test lint bench clean
+.PHONY: demo test test-slow lint bench speed clean
 
 $(STAMP): pyproject.toml constraints.txt
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -c constraints.txt -e '.[dev,render,train]'
+	$(BIN)/python -m pip install --quiet -c constraints.txt -e '.[dev,render,train,fast]'
 	touch $(STAMP)
 
 demo: $(STAMP)
@@ -19,12 +19,18 @@ demo: $(STAMP)
 test: $(STAMP)
 	$(BIN)/python -m pytest $(ARGS)
 
+test-slow: $(STAMP)
+	$(BIN)/python -m pytest -m slow $(ARGS)
+
 lint: $(STAMP)
 	$(BIN)/ruff check .
 	$(BIN)/ruff format --check .
 
 bench: $(STAMP)
 	$(BIN)/python -m bench.physics $(ARGS)
+
+speed: $(STAMP)
+	$(BIN)/python -m bench.speed $(ARGS)
 
 clean:
 	rm -rf $(VENV) .pytest_cache .hypothesis

@@ -107,6 +107,14 @@ class Fight:
         self.frame = 0
         self.steps = 0
         self.spawns = [0.0, 0.0]
+        # MotionActions are immutable: one per fighter and walking action, and per slide direction
+        self._walks = [
+            {a: MotionAction(f, WALK[a] * SIDES[f.index], 0.0) for a in WALK} for f in self.fighters
+        ]
+        self._slides = [
+            {d: MotionAction(f, d * config.fighter.head_slide, 0.0) for d in (1.0, -1.0)}
+            for f in self.fighters
+        ]
 
     def reset(self, rng: np.random.Generator) -> None:
         """Start a new fight: full stocks and health, spawns jittered by `rng`."""
@@ -124,6 +132,7 @@ class Fight:
     def step(self, actions: tuple[int, int]) -> StepEvents:
         """Run one env step (frame_skip physics frames) with each fighter's action repeated."""
         events = StepEvents()
+        actions = (Action(actions[0]), Action(actions[1]))
         for _ in range(self.config.frame_skip):
             self._frame(actions, events)
             if events.over:
@@ -142,27 +151,30 @@ class Fight:
             return None
         return 0 if scores[0] > scores[1] else 1
 
-    def _frame(self, actions: tuple[int, int], events: StepEvents) -> None:
-        motions = []
-        for fighter, action in zip(self.fighters, actions):
-            motions.extend(self._control(fighter, Action(action)))
-        for fighter in self.fighters:
+    def _frame(self, actions: tuple[Action, Action], events: StepEvents) -> None:
+        fighters = self.fighters
+        motions = self._control(fighters[0], actions[0])
+        motions += self._control(fighters[1], actions[1])
+        for fighter in fighters:
             self._place_hitbox(fighter)
         self.hit_reaction.hits.clear()
         contacts = self.world.step(self.config.physics.frame_time, motions)
+        one, two = fighters
+        grounded = set()
         for contact in contacts:
-            if contact.axis == 1 and {contact.sprite, contact.other} == set(self.fighters):
-                upper = contact.sprite if contact.normal > 0 else contact.other
+            sprite, other = contact.sprite, contact.other
+            if contact.axis == 1 and (
+                (sprite is one and other is two) or (sprite is two and other is one)
+            ):
+                upper = sprite if contact.normal > 0 else other
                 upper.on_head = True
-        grounded = {
-            contact.other if isinstance(contact.sprite, PlatformBlock) else contact.sprite
-            for contact in contacts
-            if isinstance(contact.sprite, PlatformBlock)
-            and contact.edge == "up"
-            or isinstance(contact.other, PlatformBlock)
-            and contact.edge == "down"
-        }
-        for fighter in self.fighters:
+            # a fighter on a block's top: the block's edge "up" or the fighter's edge "down"
+            if isinstance(sprite, PlatformBlock):
+                if contact.axis == 1 and contact.normal < 0.0:
+                    grounded.add(other)
+            elif isinstance(other, PlatformBlock) and contact.axis == 1 and contact.normal > 0.0:
+                grounded.add(sprite)
+        for fighter in fighters:
             fighter.on_ground = fighter in grounded
             if fighter.on_ground:
                 fighter.jumps_left = fighter.config.air_jumps
@@ -202,7 +214,7 @@ class Fight:
         if fighter.on_head:
             away = (fighter.x + fighter.width / 2) - (opponent.x + opponent.width / 2)
             direction = (1.0 if away > 0.0 else -1.0) if away != 0.0 else -fighter.facing
-            motions.append(MotionAction(fighter, direction * config.head_slide, 0.0))
+            motions.append(self._slides[fighter.index][direction])
             fighter.on_head = False
         if free:
             if jumping and not fighter.jump_held:
@@ -218,7 +230,7 @@ class Fight:
                 fighter.move_frame = 0
                 fighter.hitbox.struck.clear()
             if action in WALK:
-                motions.append(MotionAction(fighter, WALK[action] * SIDES[fighter.index], 0.0))
+                motions.append(self._walks[fighter.index][action])
         fighter.jump_held = jumping
         return motions
 
@@ -248,16 +260,29 @@ class Fight:
 
     def in_reach(self, attacker: Fighter, move: str) -> bool:
         """Would `move`, started now towards the opponent, overlap the opponent where it stands?"""
+        punch, kick = self.reach(attacker)
+        if move not in ("punch", "kick"):
+            raise ValueError(f"move must be 'punch' or 'kick', got {move!r}")
+        return punch if move == "punch" else kick
+
+    def reach(self, attacker: Fighter) -> tuple[bool, bool]:
+        """`in_reach` for the punch and the kick at once (the observations need both)."""
         defender = self.fighters[1 - attacker.index]
         toward = (defender.x + defender.width / 2) - (attacker.x + attacker.width / 2)
         facing = attacker.facing if toward == 0.0 else (1.0 if toward > 0.0 else -1.0)
-        x, y, width, height = hitbox_box(attacker, getattr(attacker.config, move), facing)
-        return (
-            x < defender.right
-            and defender.left < x + width
-            and y < defender.bottom
-            and defender.top < y + height
-        )
+        config = attacker.config
+        left, top = defender.x, defender.y
+        right, bottom = left + defender.width, top + defender.height
+        feet = attacker.y + attacker.height - config.height  # hitbox_box's y, before offset_y
+        reach = []
+        for attack in (config.punch, config.kick):
+            width = attack.hitbox_width
+            x = attacker.x + attacker.width if facing > 0 else attacker.x - width
+            y = feet + attack.offset_y
+            reach.append(
+                x < right and left < x + width and y < bottom and top < y + attack.hitbox_height
+            )
+        return reach[0], reach[1]
 
     def _advance(self, fighter: Fighter) -> None:
         """Count down stun and move frames after a physics frame."""

@@ -52,12 +52,29 @@ LOW, HIGH = -2.0, 2.0
 
 def observe(fight: Fight, index: int) -> np.ndarray:
     """The float32 observation of fighter `index` (see OBSERVATION_NAMES for each entry)."""
+    reach = (fight.reach(fight.fighters[0]), fight.reach(fight.fighters[1]))
+    return _clipped([_values(fight, index, reach)])[0]
+
+
+def observe_both(fight: Fight) -> np.ndarray:
+    """Both fighters' observations as one (2, OBSERVATION_SIZE) float32 array, fighter_0's first."""
+    reach = (fight.reach(fight.fighters[0]), fight.reach(fight.fighters[1]))
+    return _clipped([_values(fight, 0, reach), _values(fight, 1, reach)])
+
+
+def _clipped(rows: list[list[float]]) -> np.ndarray:
+    array = np.array(rows, dtype=np.float32)
+    return np.clip(array, LOW, HIGH, out=array)
+
+
+def _values(fight: Fight, index: int, reach: tuple[tuple[bool, bool], ...]) -> list[float]:
     me, other = fight.fighters[index], fight.fighters[1 - index]
     side = SIDES[index]
     arena = fight.config.arena
     half_width, half_height = arena.width / 2.0, arena.height / 2.0
-    own = _fighter(fight, me, side, half_width, half_height)
-    opponent = _fighter(fight, other, side, half_width, half_height)
+    stocks = fight.config.stocks
+    own = _fighter(me, side, half_width, half_height, stocks, reach[index])
+    opponent = _fighter(other, side, half_width, half_height, stocks, reach[1 - index])
     opponent[0] -= own[0]
     opponent[1] -= own[1]
     centre = me.x + me.width / 2.0
@@ -65,17 +82,24 @@ def observe(fight: Fight, index: int) -> np.ndarray:
     if side < 0:
         edges = edges[::-1]
     remaining = 1.0 - fight.steps / fight.config.max_cycles
-    values = [*own, *opponent, edges[0] / arena.width, edges[1] / arena.width, remaining]
-    return np.clip(np.asarray(values, dtype=np.float32), LOW, HIGH)
+    own += opponent
+    own += (edges[0] / arena.width, edges[1] / arena.width, remaining)
+    return own
 
 
 def _fighter(
-    fight: Fight, fighter: Fighter, side: float, half_width: float, half_height: float
+    fighter: Fighter,
+    side: float,
+    half_width: float,
+    half_height: float,
+    stocks: int,
+    reach: tuple[bool, bool],
 ) -> list[float]:
     config = fighter.config
-    attack = fighter.attack
+    move = fighter.move
     progress = 0.0
-    if attack is not None:
+    if move is not None:
+        attack = getattr(config, move)
         progress = fighter.move_frame / (attack.startup + attack.active + attack.recovery)
     return [
         side * (fighter.x + fighter.width / 2.0 - half_width) / half_width,
@@ -84,17 +108,17 @@ def _fighter(
         fighter.vy / VELOCITY_SCALE,
         side * fighter.facing,
         fighter.health / config.health,
-        fighter.damage_taken / config.health,
+        (config.health - fighter.health) / config.health,
         float(fighter.on_ground),
         fighter.jumps_left / config.air_jumps if config.air_jumps else 1.0,
-        float(fighter.move == "punch"),
-        float(fighter.move == "kick"),
+        float(move == "punch"),
+        float(move == "kick"),
         float(fighter.blocking),
         float(fighter.crouching),
         progress,
         float(fighter.hitbox.active),
         fighter.hitstun / HITSTUN_SCALE,
-        fighter.stocks / fight.config.stocks,
-        float(fight.in_reach(fighter, "punch")),
-        float(fight.in_reach(fighter, "kick")),
+        fighter.stocks / stocks,
+        float(reach[0]),
+        float(reach[1]),
     ]

@@ -16,10 +16,11 @@ from pettingzoo.utils.env import AECEnv
 from vooga_env.actions import Action
 from vooga_env.config import FightConfig, load_config
 from vooga_env.fight import Fight
-from vooga_env.observations import HIGH, LOW, OBSERVATION_SIZE, observe
+from vooga_env.observations import HIGH, LOW, OBSERVATION_SIZE, observe_both
 from vooga_env.rewards import HitAndRingOutReward, RewardFn
 
 AGENTS = ("fighter_0", "fighter_1")
+_ACTIONS = len(Action)
 
 
 class FightParallelEnv(ParallelEnv):
@@ -135,26 +136,40 @@ class FightParallelEnv(ParallelEnv):
         truncated = not terminated and self.fight.steps >= self.config.max_cycles
         observations = self._observations()
         agents = self.possible_agents
+        fighters = self.fight.fighters
+        hits = events.hits
+        landed = [0, 0]  # hits not blocked, by attacker; blocked ones, by defender
+        blocked = [0, 0]
+        for hit in hits:
+            if hit.blocked:
+                blocked[hit.defender] += 1
+            else:
+                landed[hit.attacker] += 1
+        winner = None
+        if terminated or truncated:
+            winner = self.fight.winner()
+            winner = "draw" if winner is None else agents[winner]
         infos = {}
         for index, agent in enumerate(agents):
-            info = self._info(index)
-            info.update(
-                hits_landed=sum(hit.attacker == index and not hit.blocked for hit in events.hits),
-                hits_blocked=sum(hit.defender == index and hit.blocked for hit in events.hits),
-                damage_dealt=events.damage_dealt[index],
-                damage_taken=events.damage_taken[index],
-                rung_out=events.rung_out[index],
-                knocked_out=events.knocked_out[index],
-            )
-            if terminated or truncated:
-                winner = self.fight.winner()
-                info["winner"] = "draw" if winner is None else agents[winner]
+            info = {
+                "health": fighters[index].health,
+                "stocks": fighters[index].stocks,
+                "hits_landed": landed[index],
+                "hits_blocked": blocked[index],
+                "damage_dealt": events.damage_dealt[index],
+                "damage_taken": events.damage_taken[index],
+                "rung_out": events.rung_out[index],
+                "knocked_out": events.knocked_out[index],
+            }
+            if winner is not None:
+                info["winner"] = winner
             infos[agent] = info
+        first, second = agents
         result = (
             observations,
-            {agent: float(rewards[index]) for index, agent in enumerate(agents)},
-            {agent: terminated for agent in agents},
-            {agent: truncated for agent in agents},
+            {first: float(rewards[0]), second: float(rewards[1])},
+            {first: terminated, second: terminated},
+            {first: truncated, second: truncated},
             infos,
         )
         if terminated or truncated:
@@ -165,7 +180,7 @@ class FightParallelEnv(ParallelEnv):
 
     def state(self) -> np.ndarray:
         """Both fighters' observations, fighter_0's first."""
-        return np.concatenate([observe(self.fight, 0), observe(self.fight, 1)])
+        return observe_both(self.fight).reshape(-1)
 
     def render(self) -> np.ndarray | None:
         if self.render_mode is None:
@@ -182,13 +197,23 @@ class FightParallelEnv(ParallelEnv):
             self._viewer = None
 
     def _observations(self) -> dict[str, np.ndarray]:
-        return {agent: observe(self.fight, i) for i, agent in enumerate(self.possible_agents)}
+        both = observe_both(self.fight)
+        return {self.possible_agents[0]: both[0], self.possible_agents[1]: both[1]}
 
     def _info(self, index: int) -> dict[str, Any]:
         fighter = self.fight.fighters[index]
         return {"health": fighter.health, "stocks": fighter.stocks}
 
     def _read_actions(self, actions: dict[str, Any]) -> tuple[int, int]:
+        if type(actions) is dict and len(actions) == 2:  # the usual case, checked quickly
+            first, second = (actions.get(agent) for agent in self.possible_agents)
+            if (
+                type(first) is int  # not bool, not a numpy integer: those take the long way
+                and type(second) is int
+                and 0 <= first < _ACTIONS
+                and 0 <= second < _ACTIONS
+            ):
+                return first, second
         if not isinstance(actions, dict):
             raise TypeError(f"actions must be a dict keyed by agent, got {actions!r}")
         unknown = set(actions) - set(self.possible_agents)

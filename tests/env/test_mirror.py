@@ -1,5 +1,6 @@
 """Mirroring the world left-right swaps the two observations exactly."""
 
+import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -52,5 +53,6 @@ def test_mirrored_world_swaps_observations(first, second, steps):
     place(one, second, width, mirrored=True)
     place(two, first, width, mirrored=True)
     after = (observe(fight, 0), observe(fight, 1))
-    assert after[0].tobytes() == before[1].tobytes()
-    assert after[1].tobytes() == before[0].tobytes()
+    # Equal values (0.0 == -0.0: a fighter at the exact centre is at -0.0 from the other side).
+    assert np.array_equal(after[0], before[1])
+    assert np.array_equal(after[1], before[0])

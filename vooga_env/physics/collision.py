@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable
 
 from vooga_env.physics import validation
@@ -93,25 +94,42 @@ class Collision:
         Sort and sweep: sprites sorted by the left edge of the box they sweep this frame, each
         compared only with those whose swept box has not ended yet. Pairs come out in team order.
         """
-        group = self._group
+        # Boxes are (low, order, high, team, movable, sprite): `order` (the sprite's place in team
+        # order) is unique, so plain tuple comparison sorts by (low, order) and never reaches the
+        # sprite; and as teams are listed in order, comparing orders compares (team, order).
         boxes = []
-        for order, sprite in enumerate(group.sprites()):
-            if sprite.active:
-                low = sprite.x + min(sprite.increment_x, 0.0)
-                high = sprite.x + sprite.width + max(sprite.increment_x, 0.0)
-                boxes.append((low, order, high, sprite, group.team_of(sprite)))
-        boxes.sort(key=lambda box: (box[0], box[1]))
-        open_boxes: list[tuple[float, int, float, SpriteTemplate, int]] = []
+        order = 0
+        for team, members in enumerate(self._group._teams):
+            for sprite in members:
+                if sprite.active:
+                    x, move = sprite.x, sprite.increment_x
+                    right = x + sprite.width
+                    boxes.append(
+                        (
+                            x + move if move < 0.0 else x,
+                            order,
+                            right + move if move > 0.0 else right,
+                            team,
+                            sprite.mass != math.inf,
+                            sprite,
+                        )
+                    )
+                order += 1
+        boxes.sort()
+        open_boxes: list[tuple[float, int, float, int, bool, SpriteTemplate]] = []
         pairs = []
         for box in boxes:
-            low = box[0]
-            open_boxes = [other for other in open_boxes if other[2] >= low]
-            for other in open_boxes:
-                if other[4] == box[4] or not (other[3].movable or box[3].movable):
-                    continue
-                pairs.append(
-                    (other, box) if (other[4], other[1]) < (box[4], box[1]) else (box, other)
-                )
+            low, _, _, team, movable, _ = box
+            if open_boxes:
+                open_boxes = [other for other in open_boxes if other[2] >= low]
+                for other in open_boxes:
+                    if other[3] == team or not (movable or other[4]):
+                        continue
+                    pairs.append(
+                        (other[1], box[1], other[5], box[5])
+                        if other[1] < box[1]
+                        else (box[1], other[1], box[5], other[5])
+                    )
             open_boxes.append(box)
-        pairs.sort(key=lambda pair: (pair[0][1], pair[1][1]))
-        return [(first[3], second[3]) for first, second in pairs]
+        pairs.sort()
+        return [(first, second) for _, _, first, second in pairs]

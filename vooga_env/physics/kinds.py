@@ -120,6 +120,7 @@ class CollisionKindCustom(CollisionKind):
             ]
             | None
         ) = None
+        self._matched: dict[tuple[type, type], bool] = {}  # _matches by the pair's classes
 
     def set_type(
         self,
@@ -138,6 +139,7 @@ class CollisionKindCustom(CollisionKind):
         if not isinstance(relation, CollisionKindCustom.Relation):
             raise TypeError(f"relation must be a CollisionKindCustom.Relation, got {relation!r}")
         self._spec = (class_one, type_one, relation, class_two, type_two)
+        self._matched = {}
 
     def is_this_kind(self, sprite_one: SpriteTemplate, sprite_two: SpriteTemplate) -> bool:
         return self._matches(sprite_one, sprite_two) or self._matches(sprite_two, sprite_one)
@@ -150,12 +152,19 @@ class CollisionKindCustom(CollisionKind):
         return sprite_two, sprite_one
 
     def _matches(self, first: SpriteTemplate, second: SpriteTemplate) -> bool:
-        if self._spec is None:
-            raise RuntimeError("CollisionKindCustom has no type: call set_type(...) before use")
-        class_one, type_one, relation, class_two, type_two = self._spec
-        one = _class_matches(type(first), class_one, type_one)
-        two = _class_matches(type(second), class_two, type_two)
-        return (one and two) if relation is CollisionKindCustom.Relation.AND else (one or two)
+        classes = (type(first), type(second))
+        matched = self._matched.get(classes)
+        if matched is None:
+            if self._spec is None:
+                raise RuntimeError("CollisionKindCustom has no type: call set_type(...) before use")
+            class_one, type_one, relation, class_two, type_two = self._spec
+            one = _class_matches(classes[0], class_one, type_one)
+            two = _class_matches(classes[1], class_two, type_two)
+            matched = (
+                (one and two) if relation is CollisionKindCustom.Relation.AND else (one or two)
+            )
+            self._matched[classes] = matched
+        return matched
 
     def __repr__(self) -> str:
         return f"CollisionKindCustom({self._reactions!r}, spec={self._spec!r})"

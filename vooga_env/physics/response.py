@@ -69,7 +69,10 @@ class PendingResponse:
         self, axis: int, position: float, increment: float, velocity: float
     ) -> tuple[float, float]:
         """The final (coordinate, velocity) along `axis` given this frame's start and increment."""
-        new_velocity = math.fsum([velocity, *self.velocity_changes[axis]])
+        # fsum of one term is the term itself and of two their float sum, save that fsum never
+        # returns -0.0 (adding 0.0 turns -0.0 into 0.0 and leaves every other value alone)
+        changes, shifts = self.velocity_changes[axis], self.shifts[axis]
+        new_velocity = math.fsum([velocity, *changes]) if changes else velocity + 0.0
         amount, reference, carry = self.friction[axis]
         slide = 0.0
         if amount > 0.0:
@@ -77,10 +80,11 @@ class PendingResponse:
             slowed = -reference + math.copysign(max(abs(sliding) - amount, 0.0), sliding)
             slide = (slowed - new_velocity) * carry
             new_velocity = slowed
-        new_position = _within(
-            math.fsum([position, increment, slide, *self.shifts[axis]]),
-            self.position_bounds[axis],
-        )
+        if shifts or slide != 0.0:
+            new_position = math.fsum([position, increment, slide, *shifts])
+        else:
+            new_position = position + increment + 0.0
+        new_position = _within(new_position, self.position_bounds[axis])
         return new_position, _within(new_velocity, self.velocity_bounds[axis])
 
 

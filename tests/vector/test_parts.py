@@ -1,0 +1,149 @@
+"""The batched engine's parts: exact sums, RNG streams, refusals, memory, the numpy fallback."""
+
+from __future__ import annotations
+
+import math
+import struct
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from gymnasium.utils import seeding
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from vooga_env.vector import UnsupportedConfig, VectorFight
+from vooga_env.vector.fsum import fsum_columns
+from vooga_env.vector.rng import PCG64Streams
+
+REPO = Path(__file__).resolve().parents[2]
+floats = st.one_of(
+    st.floats(allow_nan=False, allow_infinity=False, min_value=-1e200, max_value=1e200),
+    st.sampled_from([0.0, -0.0, 1.0, -1.0, 2.0**-53, 2.0**-1074, 1e16, 0.1]),
+)
+
+
+def bits(value: float) -> bytes:
+    return struct.pack("<d", value)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.lists(floats, min_size=7, max_size=7), min_size=1, max_size=40))
+def test_fsum_columns_is_math_fsum_bit_for_bit(rows):
+    terms = np.array(rows).T.copy()
+    got = fsum_columns(terms)
+    for j in range(terms.shape[1]):
+        assert bits(got[j]) == bits(math.fsum(terms[:, j].tolist()))
+
+
+def test_fsum_columns_on_half_way_cases():
+    # exactly half an ulp above 1.0, then a hair more or less: the partials decide the rounding
+    ulp = math.ulp(1.0)
+    columns = [
+        [1.0, ulp / 2, 0.0],
+        [1.0, ulp / 2, 2.0**-80],
+        [1.0, ulp / 2, -(2.0**-80)],
+        [1.0 + ulp, ulp / 2, 0.0],
+        [-0.0, -0.0, -0.0],
+        [1e16, 1.0, -1e16],
+        [0.1, 0.2, 0.3],
+    ]
+    got = fsum_columns(np.array(columns).T.copy())
+    for j, column in enumerate(columns):
+        assert bits(got[j]) == bits(math.fsum(column))
+
+
+def test_pcg64_streams_draw_what_the_single_env_draws():
+    seeds = [0, 1, 7, 12345, 2**40]
+    streams = PCG64Streams(len(seeds))
+    streams.seed(np.arange(len(seeds)), seeds)
+    generators = [seeding.np_random(seed)[0] for seed in seeds]
+    for k in range(50):
+        index = np.array([i for i in range(len(seeds)) if (i + k) % 3])  # not every stream draws
+        got = streams.uniform(index, -15.0, 15.0)
+        assert got.tolist() == [generators[i].uniform(-15.0, 15.0) for i in index]
+    assert streams.get_state(3) == generators[3].bit_generator.state
+
+
+@pytest.mark.parametrize(
+    ("overrides", "option"),
+    [
+        ({"collisions": {"enemy": "momentum"}}, "collisions.enemy"),
+        ({"collisions": {"neutral": "stop"}}, "collisions.neutral"),
+    ],
+)
+def test_options_the_batched_engine_cannot_run_are_refused_by_name(overrides, option):
+    with pytest.raises(UnsupportedConfig, match=option):
+        VectorFight(2, backend="numpy", **overrides)
+
+
+def test_a_custom_reward_is_refused():
+    with pytest.raises(UnsupportedConfig, match="reward_fn"):
+        VectorFight(2, backend="numpy", reward_fn=lambda fight, events: (0.0, 0.0))
+
+
+def test_bad_arguments_fail_clearly():
+    with pytest.raises(ValueError, match="num_fights"):
+        VectorFight(0)
+    with pytest.raises(ValueError, match="backend"):
+        VectorFight(1, backend="cuda")
+    fights = VectorFight(2, backend="numpy")
+    with pytest.raises(RuntimeError, match="reset"):
+        fights.step(np.zeros((2, 2), dtype=int))
+    fights.reset(seed=0)
+    with pytest.raises(ValueError, match="shape"):
+        fights.step(np.zeros((3, 2), dtype=int))
+    with pytest.raises(ValueError, match="0..9"):
+        fights.step(np.full((2, 2), 10))
+
+
+def test_a_4096_fight_batch_holds_its_state_in_under_64_mib():
+    fights = VectorFight(4096, backend="numpy")
+    assert fights.state.nbytes < 64 * 2**20
+    assert fights.state.nbytes == sum(a.nbytes for a in fights.state.arrays().values()) + (
+        fights.state.rng.nbytes
+    )
+
+
+def test_seeding_matches_the_single_env_and_continues_its_stream():
+    import vooga_env
+
+    fights = VectorFight(3, backend="numpy", arena={"spawn_jitter": 20.0})
+    first = fights.reset(seed=5)
+    again = fights.reset()  # no seed: the streams go on, as env.reset() does
+    for i in range(3):
+        env = vooga_env.parallel_env(arena={"spawn_jitter": 20.0})
+        obs, _ = env.reset(seed=5 + i)
+        assert np.array_equal(first[i, 0], obs["fighter_0"])
+        obs, _ = env.reset()
+        assert np.array_equal(again[i, 0], obs["fighter_0"])
+    assert not np.array_equal(first[0], first[1])
+
+
+def test_the_numpy_backend_runs_when_numba_is_missing():
+    script = """
+import sys
+sys.modules["numba"] = None  # as if not installed
+import numpy as np
+from vooga_env.vector import VectorFight, numba_available
+assert not numba_available()
+fights = VectorFight(3)
+assert fights.backend == "numpy", fights.backend
+fights.reset(seed=0)
+for _ in range(20):
+    fights.step(np.random.default_rng(0).integers(10, size=(3, 2)))
+try:
+    VectorFight(3, backend="numba")
+except ImportError as error:
+    assert "fast" in str(error), error
+else:
+    raise AssertionError("backend='numba' without numba did not fail")
+print("ok")
+"""
+    result = subprocess.run(
+        [sys.executable, "-c", script], cwd=REPO, capture_output=True, text=True, timeout=120
+    )
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert result.stdout.strip() == "ok"

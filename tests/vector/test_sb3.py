@@ -1,0 +1,137 @@
+"""The SB3 VecEnv over the batched engine, and the batched scripted opponents."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+pytest.importorskip("stable_baselines3")
+
+from stable_baselines3 import PPO  # noqa: E402
+from stable_baselines3.common.vec_env import VecCheckNan, VecMonitor  # noqa: E402
+
+import vooga_env  # noqa: E402
+from vooga_env.policies import make_policy  # noqa: E402
+from vooga_env.vector import VectorFight  # noqa: E402
+from vooga_env.vector.opponents import NAMES, scripted_actions  # noqa: E402
+from vooga_env.vector.sb3 import FightVecEnv  # noqa: E402
+
+
+@pytest.fixture
+def one_torch_thread():
+    """PPO on a busy 2-core machine: more torch threads only fight over the cores."""
+    import torch
+
+    threads = torch.get_num_threads()
+    torch.set_num_threads(1)
+    yield
+    torch.set_num_threads(threads)
+
+
+def test_self_play_has_two_slots_per_fight_and_sb3_conventions():
+    env = FightVecEnv(3, backend="numpy", max_cycles=20)
+    assert env.num_envs == 6
+    assert env.seed(4) == [4, 4, 5, 5, 6, 6]
+    observations = env.reset()  # observations only, as SB3 wants
+    assert observations.shape == (6, 41) and observations.dtype == np.float32
+    # slot 2i and 2i + 1 are fight i's fighters, each seeded like a single env with 4 + i
+    single, _ = vooga_env.parallel_env(max_cycles=20).reset(seed=5)
+    assert np.array_equal(observations[2], single["fighter_0"])
+    assert np.array_equal(observations[3], single["fighter_1"])
+    ends = 0
+    for _ in range(45):
+        observations, rewards, dones, infos = env.step(np.full(6, 2))  # both walk forward
+        assert rewards.shape == (6,) and dones.shape == (6,) and len(infos) == 6
+        assert np.allclose(rewards[0::2], -rewards[1::2])  # zero-sum
+        for slot in np.flatnonzero(dones):
+            info = infos[slot]
+            assert info["terminal_observation"].shape == (41,)
+            assert info["TimeLimit.truncated"] is True  # nobody falls walking into each other
+            assert info["winner"] in ("win", "loss", "draw")
+            assert observations[slot][-1] == 1.0  # a fresh episode: all its time left
+            ends += 1
+        assert all(dones[0::2] == dones[1::2])  # both seats of a fight end together
+    assert ends == 2 * 3 * 2  # every fight truncated at steps 20 and 40
+
+
+def test_same_seed_same_rollout_and_the_slots_are_the_batched_engines():
+    def rollout():
+        env = FightVecEnv(4, opponent="rush", opponent_seed=1, backend="numpy", max_cycles=30)
+        env.seed(9)
+        trace = [env.reset()]
+        rng = np.random.default_rng(0)
+        for _ in range(40):
+            trace.append(env.step(rng.integers(10, size=4))[0])
+        return np.stack(trace)
+
+    assert np.array_equal(rollout(), rollout())
+    env = FightVecEnv(2, opponent="idle", seat=1, backend="numpy")
+    env.seed(3)
+    fights = VectorFight(2, backend="numpy")
+    assert np.array_equal(env.reset(), fights.reset(seed=3)[:, 1])
+
+
+def test_events_in_infos_on_request():
+    env = FightVecEnv(2, opponent="rush", backend="numpy", info_events=True)
+    env.reset()
+    _, _, _, infos = env.step(np.zeros(2, dtype=int))
+    assert set(infos[0]) >= {"damage_dealt", "hits_landed", "rung_out", "knocked_out"}
+
+
+@pytest.mark.parametrize("opponent", [None, "turtle"])
+def test_ppo_learns_through_it_without_nans(opponent, one_torch_thread):
+    env = VecMonitor(
+        VecCheckNan(FightVecEnv(4, opponent=opponent, max_cycles=50), raise_exception=True)
+    )
+    env.seed(0)
+    model = PPO("MlpPolicy", env, n_steps=32, batch_size=64, n_epochs=1, seed=0, device="cpu")
+    model.learn(total_timesteps=3 * env.num_envs * 32)
+    assert model.num_timesteps >= 3 * env.num_envs * 32
+    assert len(model.ep_info_buffer) > 0  # episodes ended and were counted
+
+
+def observations_from_games(count: int = 600) -> np.ndarray:
+    """Real observations, from both seats of scripted games with random actions mixed in."""
+    env = vooga_env.parallel_env(config="small", max_cycles=100)
+    rng = np.random.default_rng(1)
+    policies = [make_policy("rush", 1), make_policy("zoner", 2)]
+    obs, _ = env.reset(seed=0)
+    rows = []
+    while len(rows) < count:
+        rows += [obs["fighter_0"], obs["fighter_1"]]
+        actions = {
+            agent: (int(rng.integers(10)) if rng.random() < 0.3 else policy.act(obs[agent]))
+            for agent, policy in zip(env.possible_agents, policies)
+        }
+        obs, *_ = env.step(actions)
+        if not env.agents:
+            obs, _ = env.reset()
+    return np.stack(rows)
+
+
+class FixedDraw:
+    """Stands in for a scripted policy's generator: `random()` returns the given draw."""
+
+    def __init__(self, draw: float) -> None:
+        self.draw = draw
+
+    def random(self) -> float:
+        return self.draw
+
+
+@pytest.mark.parametrize("name", [name for name in NAMES if name != "random"])
+def test_batched_scripted_fighters_choose_what_the_single_ones_choose(name):
+    observations = observations_from_games()
+    draws = np.random.default_rng(2).random(len(observations))
+    batched = scripted_actions(name, observations, draws)
+    policy = make_policy(name, 0)
+    for row, draw, action in zip(observations, draws, batched):
+        policy.rng = FixedDraw(float(draw))
+        assert policy.act(row) == action
+
+
+def test_batched_random_fighter_covers_the_actions():
+    actions = scripted_actions(
+        "random", np.zeros((5000, 41), np.float32), np.linspace(0, 1, 5000, endpoint=False)
+    )
+    assert set(actions.tolist()) == set(range(10))

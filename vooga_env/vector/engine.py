@@ -1,0 +1,235 @@
+"""`VectorFight`: N fights stepped together, the single env's rules and results, auto-reset.
+
+    fights = VectorFight(1024, config="default")
+    observations = fights.reset(seed=0)             # (N, 2, 41) float32; fight i seeded 0 + i
+    observations, rewards, terminated, truncated, info = fights.step(actions)  # actions (N, 2)
+
+Fight i behaves exactly as `parallel_env(config).reset(seed=seed + i)` followed by the same actions,
+`reset()` (no seed) whenever it ends: same positions, velocities, observations, rewards, dones. A
+fight that ends is reset in the same `step`; its last observation is `info["final_observation"]`.
+`backend="numpy"` steps with array operations, `"numba"` with compiled loops (the `fast` extra),
+`"auto"` picks numba when it is installed.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from vooga_env.config import FightConfig, load_config
+from vooga_env.observations import OBSERVATION_SIZE
+from vooga_env.vector import frame as numpy_frame
+from vooga_env.vector.observe import edge_advantage, observe, rewards, winners
+from vooga_env.vector.params import FightParams, check_supported
+from vooga_env.vector.state import FightState, StepEvents
+
+BACKENDS = ("auto", "numpy", "numba")
+
+
+def numba_available() -> bool:
+    try:
+        import numba  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+class VectorFight:
+    """N independent fights in arrays (`state`: a `FightState`), stepped with one call."""
+
+    def __init__(
+        self,
+        num_fights: int,
+        config: str | Path | FightConfig = "default",
+        backend: str = "auto",
+        reward_fn: Any = None,
+        **overrides: Any,
+    ) -> None:
+        if isinstance(num_fights, bool) or not isinstance(num_fights, (int, np.integer)):
+            raise TypeError(f"num_fights must be an int, got {num_fights!r}")
+        if num_fights < 1:
+            raise ValueError(f"num_fights must be >= 1, got {num_fights}")
+        if backend not in BACKENDS:
+            raise ValueError(f"backend must be one of {', '.join(BACKENDS)}, got {backend!r}")
+        self.config = load_config(config, **overrides)
+        check_supported(self.config, reward_fn)
+        if backend == "auto":
+            backend = "numba" if numba_available() else "numpy"
+        if backend == "numba":
+            if not numba_available():
+                raise ImportError(
+                    "backend='numba' needs numba: pip install 'vooga-env[fast]' (or numba)"
+                )
+            from vooga_env.vector.cache import drop_stale_kernel_cache
+
+            drop_stale_kernel_cache()
+            from vooga_env.vector import kernel
+
+            self._kernel = kernel.Kernel(FightParams.from_config(self.config))
+        else:
+            self._kernel = None
+        self.backend = backend
+        self.num_fights = int(num_fights)
+        self.params = FightParams.from_config(self.config)
+        self.state = FightState(self.num_fights)
+        self._all = np.arange(self.num_fights)
+        self._needs_reset = True
+        self._seeded = False
+
+    @property
+    def observation_shape(self) -> tuple[int, int, int]:
+        return (self.num_fights, 2, OBSERVATION_SIZE)
+
+    def seed(self, seed: int | list[int | None] | None = None) -> None:
+        """Seed every fight's spawn RNG: fight i gets `seed + i` (or `seed[i]`; None: entropy)."""
+        if isinstance(seed, (list, tuple, np.ndarray)):
+            seeds = [None if s is None else int(s) for s in seed]
+            if len(seeds) != self.num_fights:
+                raise ValueError(f"need {self.num_fights} seeds, got {len(seeds)}")
+        elif seed is None:
+            seeds = [None] * self.num_fights
+        else:
+            if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+                raise ValueError(f"seed must be a non-negative int, a list or None, got {seed!r}")
+            seeds = [int(seed) + i for i in range(self.num_fights)]
+        self.state.rng.seed(self._all, seeds)
+        self._seeded = True
+
+    def reset(self, seed: int | list[int | None] | None = None) -> np.ndarray:
+        """Reset every fight (seeding first if `seed` is given); the (N, 2, 41) observations.
+
+        Without a seed, the first reset seeds from entropy and later ones continue each fight's
+        stream, as the single env's `reset()` does.
+        """
+        if seed is not None or not self._seeded:
+            self.seed(seed)
+        self._reset_fights(self._all)
+        self._needs_reset = False
+        return self.observe()
+
+    def step(self, actions: np.ndarray):
+        """One env step of every fight; ended fights are reset in the same call.
+
+        `actions`: (N, 2) ints in 0..9, fighter_0's then fighter_1's. Returns observations
+        (N, 2, 41) float32 (of the new episode where one ended), rewards (N, 2) float64,
+        terminated (N,), truncated (N,), and `info`: `StepEvents` fields (each (2, N)),
+        `health` and `stocks` (2, N) before any reset, `winner` (N,) (0, 1, -1 draw; -2 while the
+        fight goes on), `done_index` (the ended fights' indices, ascending) and
+        `final_observation` (len(done_index), 2, 41): their last observations.
+        """
+        events, rewards, terminated, truncated, winner = self.advance(actions)
+        observations = self.observe()
+        s = self.state
+        info = {
+            "damage_dealt": events.damage_dealt,
+            "damage_taken": events.damage_taken,
+            "hits_landed": events.hits_landed,
+            "hits_blocked": events.hits_blocked,
+            "rung_out": events.rung_out,
+            "knocked_out": events.knocked_out,
+            "health": s.health.copy(),
+            "stocks": s.stocks.copy(),
+            "winner": winner,
+        }
+        index = np.flatnonzero(winner != -2)
+        info["done_index"] = index
+        info["final_observation"] = observations[index]
+        if index.size:
+            self._reset_fights(index)
+            self._observe_into(observations, index)
+        return observations, rewards, terminated, truncated, info
+
+    def advance(self, actions: np.ndarray):
+        """One env step without the auto-reset: (events, rewards, terminated, truncated, winner)."""
+        if self._needs_reset:
+            raise RuntimeError("step() before reset(): call reset() first")
+        actions = self._check_actions(actions)
+        state, params, size = self.state, self.params, self.num_fights
+        events = StepEvents(size)
+        if self._kernel is not None:
+            reward = np.empty((size, 2))
+            truncated = np.empty(size, dtype=bool)
+            winner = np.empty(size, dtype=np.int64)
+            self._kernel.step(state, actions, events, reward, truncated, winner)
+            return events, reward, events.over.copy(), truncated, winner
+        columns = np.ascontiguousarray(actions.T)
+        for k in range(self.config.frame_skip):
+            saved = None
+            if k and events.over.any():  # a fight that ended takes no more frames this step
+                if events.over.all():
+                    break
+                index = np.flatnonzero(events.over)
+                saved = (index, state.take(index), events.take(index))
+            numpy_frame.frame(params, state, columns, events)
+            if saved is not None:
+                state.put(saved[0], saved[1])
+                events.put(saved[0], saved[2])
+        state.steps += 1
+        terminated = events.over.copy()
+        truncated = ~terminated & (state.steps >= self.config.max_cycles)
+        winner = np.where(terminated | truncated, winners(state), -2)
+        return events, rewards(params, state, events), terminated, truncated, winner
+
+    def reset_done(self, done: np.ndarray) -> np.ndarray:
+        """Reset the fights where `done` holds; all fights' observations afterwards."""
+        index = np.flatnonzero(done)
+        if index.size:
+            self._reset_fights(index)
+        return self.observe()
+
+    def observe(self) -> np.ndarray:
+        """Every fight's observations now: (N, 2, 41) float32."""
+        if self._kernel is None:
+            return observe(self.params, self.state)
+        out = np.empty(self.observation_shape, dtype=np.float32)
+        self._kernel.observe(self.state, out, self._all)
+        return out
+
+    def _observe_into(self, out: np.ndarray, index: np.ndarray) -> None:
+        if self._kernel is None:
+            out[index] = observe(self.params, self.state, index)
+        else:
+            self._kernel.observe(self.state, out, index)
+
+    def _reset_fights(self, index: np.ndarray) -> None:
+        """`Fight.reset` for the fights `index`: jittered spawns, full stocks, both respawned."""
+        if self._kernel is not None:
+            self._kernel.reset(self.state, index)
+            return
+        p, s = self.params, self.state
+        jitter = p.spawn_jitter
+        for f in (0, 1):
+            x = np.full(index.shape, p.spawns[f])
+            # Fight.reset: x + (rng.uniform(-jitter, jitter) if jitter > 0 else 0.0)
+            x = x + (s.rng.uniform(index, -jitter, jitter) if jitter > 0 else 0.0)
+            s.spawn_x[f, index] = x
+            s.spawn_top[f, index] = p.spawn_top(x)
+        mask = np.zeros(self.num_fights, dtype=bool)
+        mask[index] = True
+        for f in (0, 1):
+            s.stocks[f, index] = self.config.stocks
+            numpy_frame.respawn(p, s, f, mask)
+        s.frame[index] = 0
+        s.steps[index] = 0
+        s.potential[index] = edge_advantage(p, s, index)  # HitAndRingOutReward.reset
+
+    def _check_actions(self, actions: Any) -> np.ndarray:
+        actions = np.asarray(actions)
+        if actions.shape != (self.num_fights, 2):
+            raise ValueError(f"actions must have shape ({self.num_fights}, 2), got {actions.shape}")
+        if not np.issubdtype(actions.dtype, np.integer):
+            if np.issubdtype(actions.dtype, np.floating) and np.all(actions == np.round(actions)):
+                actions = actions.astype(np.int64)
+            else:
+                raise TypeError(f"actions must be integers in 0..9, got dtype {actions.dtype}")
+        if actions.min() < 0 or actions.max() > 9:
+            raise ValueError("actions must be in 0..9")
+        return actions.astype(np.int64, copy=False)
+
+    def __repr__(self) -> str:
+        return (
+            f"VectorFight(num_fights={self.num_fights}, config={self.config.name!r}, "
+            f"backend={self.backend!r})"
+        )

@@ -1,0 +1,149 @@
+"""The scripted fighters of `vooga_env.policies`, deciding for a whole batch of observations.
+
+`scripted_actions(name, observations, draws)` makes, row by row, the choice the scalar policy
+makes on that observation when its random draw (`rng.random()`) is `draws[row]`; a test holds
+the two together. `VectorOpponent` draws from one seeded generator for the batch (not the
+per-fighter streams of the scalar policies, so a game against it is not the same game).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from vooga_env.actions import Action
+from vooga_env.observations import OBSERVATION_NAMES
+from vooga_env.policies import SCRIPTED
+
+_I = {name: index for index, name in enumerate(OBSERVATION_NAMES)}
+
+
+def _column(observations: np.ndarray, name: str) -> np.ndarray:
+    return observations[:, _I[name]]
+
+
+def _toward(gap: np.ndarray) -> np.ndarray:
+    return np.where(gap > 0, Action.RIGHT, Action.LEFT)
+
+
+def _recover(observations: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """policies._recover: (needed, action) per row."""
+    left, right = _column(observations, "stage_left"), _column(observations, "stage_right")
+    needed = ~((left >= 0) & (right >= 0))
+    back_right = left < 0
+    falling = (_column(observations, "self_vy") > 0) & ~(
+        _column(observations, "self_on_ground") != 0
+    )
+    jump = falling & (_column(observations, "self_jumps_left") > 0)
+    action = np.where(
+        jump,
+        np.where(back_right, Action.JUMP_RIGHT, Action.JUMP_LEFT),
+        np.where(back_right, Action.RIGHT, Action.LEFT),
+    )
+    return needed, action
+
+
+def _reach(observations: np.ndarray, move: str) -> np.ndarray:
+    return _column(observations, f"self_{move}_reach") != 0
+
+
+def _attacking(observations: np.ndarray) -> np.ndarray:
+    return (_column(observations, "opponent_punching") != 0) | (
+        _column(observations, "opponent_kicking") != 0
+    )
+
+
+def _rush(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
+    gap = _column(observations, "opponent_x")
+    kick = _reach(observations, "kick") & (draws < 0.5)
+    return np.where(
+        _reach(observations, "punch"), Action.PUNCH, np.where(kick, Action.KICK, _toward(gap))
+    )
+
+
+def _turtle(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
+    gap = _column(observations, "opponent_x")
+    attacking = _attacking(observations)
+    strike = np.where(_reach(observations, "punch"), Action.PUNCH, Action.KICK)
+    punish = attacking | (_column(observations, "opponent_hitstun") > 0) | (draws >= 0.7)
+    guard = attacking & (_column(observations, "opponent_move_progress") < 0.6)
+    close = np.where(guard, Action.BLOCK, np.where(punish, strike, Action.BLOCK))
+    return np.where(_reach(observations, "kick"), close, _toward(gap))
+
+
+def _zoner(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
+    gap = _column(observations, "opponent_x")
+    behind = np.where(
+        gap > 0, _column(observations, "stage_left"), _column(observations, "stage_right")
+    )
+    away = np.where(gap > 0, Action.LEFT, Action.RIGHT)
+    return np.where(
+        _reach(observations, "punch") & (behind > 0.08),
+        away,
+        np.where(_reach(observations, "kick"), Action.KICK, _toward(gap)),
+    )
+
+
+def _edge_guard(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
+    gap = _column(observations, "opponent_x")
+    own = (_column(observations, "stage_left") - _column(observations, "stage_right")) / 2
+    pressing = gap * (own + gap / 2) > 0
+    strike = np.where(pressing | ~_reach(observations, "punch"), Action.KICK, Action.PUNCH)
+    close = np.where(_attacking(observations) & ~pressing, Action.BLOCK, strike)
+    far = np.where(
+        pressing | (np.abs(own) < 0.05),
+        _toward(gap),
+        np.where(own > 0, Action.LEFT, Action.RIGHT),
+    )
+    return np.where(_reach(observations, "kick"), close, far)
+
+
+def _idle(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
+    return np.full(len(observations), Action.IDLE)
+
+
+_DECIDE = {
+    "idle": _idle,
+    "rush": _rush,
+    "turtle": _turtle,
+    "zoner": _zoner,
+    "edge_guard": _edge_guard,
+}
+NAMES = (*_DECIDE, "random")
+assert set(NAMES) == set(SCRIPTED), "a scripted fighter without a batched version"
+
+
+def scripted_actions(name: str, observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
+    """The action of scripted fighter `name` for each row of `observations` (n, 41).
+
+    `draws` (n,) in [0, 1) stand for each row's `rng.random()`; "random" maps them to
+    `floor(draw * 10)`.
+    """
+    if name == "random":
+        return np.minimum((draws * len(Action)).astype(np.int64), len(Action) - 1)
+    if name not in _DECIDE:
+        raise ValueError(f"unknown scripted fighter {name!r}; known: {', '.join(NAMES)}")
+    chosen = _DECIDE[name](observations, draws)
+    if name == "idle":  # stands still, even off the stage
+        return chosen.astype(np.int64)
+    needed, recover = _recover(observations)
+    return np.where(needed, recover, chosen).astype(np.int64)
+
+
+class VectorOpponent:
+    """A scripted fighter for a batch: `act(observations (n, 41)) -> actions (n,)`."""
+
+    def __init__(self, name: str, seed: int | None = None) -> None:
+        if name not in NAMES:
+            raise ValueError(f"unknown scripted fighter {name!r}; known: {', '.join(NAMES)}")
+        self.name = name
+        self.rng = np.random.default_rng(seed)
+
+    def reset(self, seed: int | None = None) -> None:
+        if seed is not None:
+            self.rng = np.random.default_rng(seed)
+
+    def act(self, observations: np.ndarray) -> np.ndarray:
+        return scripted_actions(self.name, observations, self.rng.random(len(observations)))
+
+    def __repr__(self) -> str:
+        return f"VectorOpponent({self.name!r})"
