@@ -7,7 +7,8 @@
 Prints the model's win rate against `rush` over `--games` games (with a 95% Wilson interval) and
 an Elo round-robin of the model and every scripted fighter, and writes both to OUT/result.json.
 The claims it checks (issue 4): >= 80% against rush and a higher Elo than every scripted fighter;
-for self-play, the latest snapshot beats the first in >= 70% of games.
+for self-play, the latest snapshot beats the first in >= 70% of games, both sampling their actions
+as snapshots do in self-play (and, for reference, both taking the argmax).
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from agents.train import train
 from agents.train_config import load_train_config
 from vooga_env.elo import K_FACTOR, START_RATING, round_robin
 from vooga_env.match import MatchResult, run_match, wilson_interval
+from vooga_env.models import FrozenPolicy, load_model
 from vooga_env.policies import SCRIPTED
 
 
@@ -50,8 +52,13 @@ def measure(model: Path, games: int, round_robin_games: int, seed: int = 12345) 
     result: dict[str, Any] = {}
     first = first_snapshot(model.parent)
     if first is not None:
-        match = run_match(str(model), str(first), games, seed, names=("latest", "first"))
-        result["vs_first_snapshot"] = summary(match)
+        for key, deterministic in (("vs_first_snapshot", False), ("vs_first_argmax", True)):
+            latest_policy, first_policy = (
+                FrozenPolicy(load_model(path), name, deterministic)
+                for path, name in ((model, "latest"), (first, "first"))
+            )
+            match = run_match(latest_policy, first_policy, games, seed, names=("latest", "first"))
+            result[key] = summary(match)
     result["vs_rush"] = summary(run_match(str(model), "rush", games, seed, names=("model", "rush")))
     entrants = {"model": str(model), **{name: name for name in SCRIPTED}}
     result["elo"] = round_robin(entrants, round_robin_games, seed).table.to_dict()
@@ -91,9 +98,16 @@ def main(argv: list[str] | None = None) -> int:
     (args.out / "result.json").write_text(json.dumps(result, indent=2))
     print(f"trained {config.name} for {trained / 60:.1f} min")
     if "vs_first_snapshot" in result:
-        print(describe("latest vs first snapshot", result["vs_first_snapshot"]))
+        print(
+            describe(
+                "latest vs first snapshot, sampling as in self-play", result["vs_first_snapshot"]
+            )
+        )
+        print(describe("latest vs first snapshot, both argmax", result["vs_first_argmax"]))
     print(describe("vs rush", result["vs_rush"]))
-    print(f"Elo (K={K_FACTOR:g}, start {START_RATING:g}, {args.round_robin_games} games a pairing):")
+    print(
+        f"Elo (K={K_FACTOR:g}, start {START_RATING:g}, {args.round_robin_games} games a pairing):"
+    )
     for row in result["elo"]["ratings"]:
         print(f"  {row['name']:<12} {row['rating']:7.1f}")
     print(f"wrote {args.out / 'result.json'}")

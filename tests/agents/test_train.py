@@ -125,6 +125,7 @@ def test_the_selfplay_benchmark_measures_latest_against_first(tmp_path):
     assert train_recipe.main(["--quick", "--selfplay", "--out", str(tmp_path)]) == 0
     result = json.loads((tmp_path / "result.json").read_text())
     first = result["vs_first_snapshot"]
+    assert result["vs_first_argmax"]["games"] == 4
     assert first["wins"] + first["losses"] + first["draws"] == first["games"] == 4
     assert train_recipe.first_snapshot(tmp_path).name == "snapshot_0.zip"
 
