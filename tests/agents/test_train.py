@@ -61,8 +61,16 @@ def test_ctrl_c_keeps_the_last_checkpoint_and_resume_finishes(tmp_path):
         "[ppo]\nn_steps = 256\nbatch_size = 256\nn_epochs = 1\n"
     )
     out = tmp_path / "run"
-    command = [sys.executable, "-m", "agents.train", "--config", str(config), "--out", str(out),
-               "--no-progress"]
+    command = [
+        sys.executable,
+        "-m",
+        "agents.train",
+        "--config",
+        str(config),
+        "--out",
+        str(out),
+        "--no-progress",
+    ]
     process = subprocess.Popen(command, cwd=ROOT, stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 120
     while not (out / "checkpoints" / "ppo_1024_steps.zip").is_file():
