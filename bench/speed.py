@@ -64,8 +64,8 @@ def side_by_side(
     return rates[0], rates[1]
 
 
-def cartpole_steps() -> Callable[[int], int]:
-    env = gymnasium.make("CartPole-v1")
+def gymnasium_steps(env: gymnasium.Env) -> Callable[[int], int]:
+    """Random-action steps of a Gymnasium env, resetting at episode ends."""
     env.reset(seed=0)
     space = env.action_space
 
@@ -77,6 +77,10 @@ def cartpole_steps() -> Callable[[int], int]:
         return k
 
     return run
+
+
+def cartpole_steps() -> Callable[[int], int]:
+    return gymnasium_steps(gymnasium.make("CartPole-v1"))
 
 
 def parallel_steps() -> Callable[[int], int]:
@@ -118,18 +122,7 @@ def aec_cycles() -> Callable[[int], int]:
 
 
 def gym_steps() -> Callable[[int], int]:
-    env = gymnasium.make("vooga_env/Fight-v0", opponent="random")
-    env.reset(seed=0)
-    space = env.action_space
-
-    def run(k: int) -> int:
-        for _ in range(k):
-            _, _, terminated, truncated, _ = env.step(space.sample())
-            if terminated or truncated:
-                env.reset()
-        return k
-
-    return run
+    return gymnasium_steps(gymnasium.make("vooga_env/Fight-v0", opponent="random"))
 
 
 def batched_steps(size: int, backend: str) -> Callable[[int], int]:
