@@ -71,7 +71,15 @@ def test_ctrl_c_keeps_the_last_checkpoint_and_resume_finishes(tmp_path):
         str(out),
         "--no-progress",
     ]
-    process = subprocess.Popen(command, cwd=ROOT, stderr=subprocess.PIPE, text=True)
+    # As at a terminal: a suite started in the background (`cmd &` in a script) inherits an
+    # ignored SIGINT, and Python installs no KeyboardInterrupt handler when SIGINT is ignored.
+    process = subprocess.Popen(
+        command,
+        cwd=ROOT,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )
     deadline = time.monotonic() + 120
     while not (out / "checkpoints" / "ppo_1024_steps.zip").is_file():
         assert process.poll() is None and time.monotonic() < deadline
