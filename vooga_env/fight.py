@@ -258,30 +258,17 @@ class Fight:
                 fighter, attack, fighter.facing
             )
 
-    def in_reach(self, attacker: Fighter, move: str) -> bool:
-        """Would `move`, started now towards the opponent, overlap the opponent where it stands?"""
-        punch, kick = self.reach(attacker)
-        if move not in ("punch", "kick"):
-            raise ValueError(f"move must be 'punch' or 'kick', got {move!r}")
-        return punch if move == "punch" else kick
-
     def reach(self, attacker: Fighter) -> tuple[bool, bool]:
-        """`in_reach` for the punch and the kick at once (the observations need both)."""
+        """Would a punch, and a kick, started now towards the opponent touch it where it stands?"""
         defender = self.fighters[1 - attacker.index]
         toward = (defender.x + defender.width / 2) - (attacker.x + attacker.width / 2)
         facing = attacker.facing if toward == 0.0 else (1.0 if toward > 0.0 else -1.0)
-        config = attacker.config
         left, top = defender.x, defender.y
         right, bottom = left + defender.width, top + defender.height
-        feet = attacker.y + attacker.height - config.height  # hitbox_box's y, before offset_y
         reach = []
-        for attack in (config.punch, config.kick):
-            width = attack.hitbox_width
-            x = attacker.x + attacker.width if facing > 0 else attacker.x - width
-            y = feet + attack.offset_y
-            reach.append(
-                x < right and left < x + width and y < bottom and top < y + attack.hitbox_height
-            )
+        for attack in (attacker.config.punch, attacker.config.kick):
+            x, y, width, height = hitbox_box(attacker, attack, facing)
+            reach.append(x < right and left < x + width and y < bottom and top < y + height)
         return reach[0], reach[1]
 
     def _advance(self, fighter: Fighter) -> None:

@@ -96,10 +96,9 @@ def _fighter(
     reach: tuple[bool, bool],
 ) -> list[float]:
     config = fighter.config
-    move = fighter.move
+    move, attack = fighter.move, fighter.attack
     progress = 0.0
-    if move is not None:
-        attack = getattr(config, move)
+    if attack is not None:
         progress = fighter.move_frame / (attack.startup + attack.active + attack.recovery)
     return [
         side * (fighter.x + fighter.width / 2.0 - half_width) / half_width,
@@ -108,7 +107,7 @@ def _fighter(
         fighter.vy / VELOCITY_SCALE,
         side * fighter.facing,
         fighter.health / config.health,
-        (config.health - fighter.health) / config.health,
+        fighter.damage_taken / config.health,
         float(fighter.on_ground),
         fighter.jumps_left / config.air_jumps if config.air_jumps else 1.0,
         float(move == "punch"),

@@ -136,7 +136,6 @@ class FightParallelEnv(ParallelEnv):
         truncated = not terminated and self.fight.steps >= self.config.max_cycles
         observations = self._observations()
         agents = self.possible_agents
-        fighters = self.fight.fighters
         hits = events.hits
         landed = [0, 0]  # hits not blocked, by attacker; blocked ones, by defender
         blocked = [0, 0]
@@ -152,8 +151,7 @@ class FightParallelEnv(ParallelEnv):
         infos = {}
         for index, agent in enumerate(agents):
             info = {
-                "health": fighters[index].health,
-                "stocks": fighters[index].stocks,
+                **self._info(index),
                 "hits_landed": landed[index],
                 "hits_blocked": blocked[index],
                 "damage_dealt": events.damage_dealt[index],
