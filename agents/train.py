@@ -11,6 +11,7 @@ when it is installed. The finished model is `OUT/final.zip`; `agents.evaluate` m
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import importlib.util
 import json
 import sys
@@ -107,7 +108,7 @@ def train(
         state = json.loads((folder / STATE_FILE).read_text())
         model = PPO.load(latest, env=envs, device="cpu")
     else:
-        (folder / "train_config.json").write_text(json.dumps(_plain(config), indent=2))
+        (folder / "train_config.json").write_text(json.dumps(dataclasses.asdict(config), indent=2))
         model = build_model(config, envs, folder)
     if config.mode == "selfplay":
         opponents: Any = SelfPlayCallback(config.selfplay, folder / "snapshots", config.seed, state)
@@ -134,12 +135,6 @@ def train(
     final = folder / "final.zip"
     model.save(final)
     return final
-
-
-def _plain(config: Any) -> Any:
-    from dataclasses import asdict
-
-    return asdict(config)
 
 
 def main(argv: list[str] | None = None) -> int:

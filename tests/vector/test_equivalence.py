@@ -143,16 +143,7 @@ def side_by_side(
             same(terminated[i], term["fighter_0"], f"{where}: terminated")
             same(truncated[i], trunc["fighter_0"], f"{where}: truncated")
             for f, agent in enumerate(agents):
-                for key in (
-                    "hits_landed",
-                    "hits_blocked",
-                    "damage_dealt",
-                    "damage_taken",
-                    "rung_out",
-                    "knocked_out",
-                    "health",
-                    "stocks",
-                ):
+                for key in INFO_KEYS:
                     assert info[key][f, i] == infos[agent][key], f"{where}: {agent} {key}"
             counts["hits"] += infos["fighter_0"]["hits_landed"] + infos["fighter_1"]["hits_landed"]
             counts["blocks"] += (
