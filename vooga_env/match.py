@@ -94,11 +94,11 @@ class EpisodeRecord:
                 self.winner = info["winner"]
 
     def close(self, env: Any) -> None:
-        """Read the final health, stocks and positions off the env's fight."""
-        for seat, fighter in enumerate(env.fight.fighters):
-            self.health[seat] = float(fighter.health)
-            self.stocks[seat] = int(fighter.stocks)
-            self.positions[seat] = [float(fighter.x), float(fighter.y)]
+        """Read the final health, stocks and positions off the env."""
+        for seat, status in enumerate(env.fighter_status()):
+            self.health[seat] = float(status["health"])
+            self.stocks[seat] = int(status["stocks"])
+            self.positions[seat] = [float(status["x"]), float(status["y"])]
 
 
 def capture_frame(env: Any) -> np.ndarray:

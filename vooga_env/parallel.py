@@ -16,8 +16,9 @@ from pettingzoo.utils.env import AECEnv
 from vooga_env.actions import Action
 from vooga_env.config import FightConfig, load_config
 from vooga_env.fight import Fight
-from vooga_env.observations import HIGH, LOW, OBSERVATION_SIZE, observe_both
-from vooga_env.rewards import HitAndRingOutReward, RewardFn
+from vooga_env.observations import HIGH, LOW, OBSERVATION_SIZE
+from vooga_env.rewards import RewardFn
+from vooga_env.simulation import DRAW, GOING_ON, INFO_KEYS, make_simulation
 
 AGENTS = ("fighter_0", "fighter_1")
 _ACTIONS = len(Action)
@@ -55,9 +56,10 @@ class FightParallelEnv(ParallelEnv):
 
     ## Arguments
     `config` (a name from `configs/`, a .toml path or a FightConfig), `render_mode` ("human" or
-    "rgb_array"), `reward_fn` (called with the fight and the step's events), and any config key as a
-    keyword override: `max_cycles`, `frame_skip`, `stocks`, or a table such as
-    `physics={"gravity": 0.003}`.
+    "rgb_array"), `reward_fn` (called with the fight and the step's events), `backend` ("auto",
+    "engine" or "compiled": what steps the fight, see `vooga_env.simulation`; every backend gives
+    the same results bit for bit), and any config key as a keyword override: `max_cycles`,
+    `frame_skip`, `stocks`, or a table such as `physics={"gravity": 0.003}`.
 
     ## Version History
     v0: first release.
@@ -75,6 +77,7 @@ class FightParallelEnv(ParallelEnv):
         config: str | Path | FightConfig = "default",
         render_mode: str | None = None,
         reward_fn: RewardFn | None = None,
+        backend: str = "auto",
         **overrides: Any,
     ) -> None:
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
@@ -84,8 +87,7 @@ class FightParallelEnv(ParallelEnv):
             )
         self.config = load_config(config, **overrides)
         self.render_mode = render_mode
-        self.reward_fn = reward_fn or HitAndRingOutReward(self.config.rewards)
-        self.fight = Fight(self.config)
+        self.simulation = make_simulation(self.config, backend, reward_fn, render_mode)
         self.possible_agents = list(AGENTS)
         self.agents: list[str] = []
         self.metadata = {
@@ -115,13 +117,14 @@ class FightParallelEnv(ParallelEnv):
             if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
                 raise ValueError(f"seed must be a non-negative int or None, got {seed!r}")
             self._np_random, _ = seeding.np_random(int(seed))
-        self.fight.reset(self._np_random)
-        reset_reward = getattr(self.reward_fn, "reset", None)
-        if reset_reward is not None:
-            reset_reward(self.fight)
+        both = self.simulation.reset(self._np_random)
         self.agents = list(self.possible_agents)
-        observations = self._observations()
-        infos = {agent: self._info(index) for index, agent in enumerate(self.possible_agents)}
+        first, second = self.possible_agents
+        observations = {first: both[0], second: both[1]}
+        infos = {
+            agent: {"health": status["health"], "stocks": status["stocks"]}
+            for agent, status in zip(self.possible_agents, self.simulation.fighter_status())
+        }
         if self.render_mode == "human":
             self.render()
         return observations, infos
@@ -129,56 +132,55 @@ class FightParallelEnv(ParallelEnv):
     def step(self, actions: dict[str, Any]) -> tuple[dict, dict, dict, dict, dict]:
         if not self.agents:
             raise RuntimeError("step() called on a finished episode; call reset() first")
-        chosen = self._read_actions(actions)
-        events = self.fight.step(chosen)
-        rewards = self.reward_fn(self.fight, events)
-        terminated = events.over
-        truncated = not terminated and self.fight.steps >= self.config.max_cycles
-        observations = self._observations()
-        agents = self.possible_agents
-        hits = events.hits
-        landed = [0, 0]  # hits not blocked, by attacker; blocked ones, by defender
-        blocked = [0, 0]
-        for hit in hits:
-            if hit.blocked:
-                blocked[hit.defender] += 1
-            else:
-                landed[hit.attacker] += 1
-        winner = None
-        if terminated or truncated:
-            winner = self.fight.winner()
-            winner = "draw" if winner is None else agents[winner]
-        infos = {}
-        for index, agent in enumerate(agents):
-            info = {
-                **self._info(index),
-                "hits_landed": landed[index],
-                "hits_blocked": blocked[index],
-                "damage_dealt": events.damage_dealt[index],
-                "damage_taken": events.damage_taken[index],
-                "rung_out": events.rung_out[index],
-                "knocked_out": events.knocked_out[index],
-            }
-            if winner is not None:
-                info["winner"] = winner
-            infos[agent] = info
-        first, second = agents
+        both, rewards, terminated, truncated, winner, columns = self.simulation.step(
+            *self._read_actions(actions)
+        )
+        first, second = self.possible_agents
+        values_0, values_1 = zip(*columns)
+        infos = {first: dict(zip(INFO_KEYS, values_0)), second: dict(zip(INFO_KEYS, values_1))}
+        if winner != GOING_ON:
+            winner = "draw" if winner == DRAW else self.possible_agents[winner]
+            infos[first]["winner"] = infos[second]["winner"] = winner
+            self.agents = []
         result = (
-            observations,
-            {first: float(rewards[0]), second: float(rewards[1])},
+            {first: both[0], second: both[1]},
+            {first: rewards[0], second: rewards[1]},
             {first: terminated, second: terminated},
             {first: truncated, second: truncated},
             infos,
         )
-        if terminated or truncated:
-            self.agents = []
         if self.render_mode == "human":
             self.render()
         return result
 
+    @property
+    def backend(self) -> str:
+        """What steps the fight: "engine" or "compiled" (see `vooga_env.simulation`)."""
+        return self.simulation.backend
+
+    @property
+    def fight(self) -> Fight:
+        """The engine's `Fight` (the "engine" backend only: the compiled one keeps arrays)."""
+        fight = getattr(self.simulation, "fight", None)
+        if fight is None:
+            raise AttributeError(
+                f"the {self.backend!r} backend has no Fight object; "
+                "pass backend='engine' to reach the engine's sprites"
+            )
+        return fight
+
+    @property
+    def reward_fn(self) -> RewardFn | None:
+        """The engine backend's reward function (the compiled one computes the default reward)."""
+        return getattr(self.simulation, "reward_fn", None)
+
+    def fighter_status(self) -> list[dict[str, Any]]:
+        """Each fighter's top-left `x`, `y` (px), `health` and `stocks` now, fighter_0's first."""
+        return self.simulation.fighter_status()
+
     def state(self) -> np.ndarray:
         """Both fighters' observations, fighter_0's first."""
-        return observe_both(self.fight).reshape(-1)
+        return self.simulation.observe().reshape(-1)
 
     def render(self) -> np.ndarray | None:
         if self.render_mode is None:
@@ -194,17 +196,10 @@ class FightParallelEnv(ParallelEnv):
             self._viewer.close()
             self._viewer = None
 
-    def _observations(self) -> dict[str, np.ndarray]:
-        both = observe_both(self.fight)
-        return {self.possible_agents[0]: both[0], self.possible_agents[1]: both[1]}
-
-    def _info(self, index: int) -> dict[str, Any]:
-        fighter = self.fight.fighters[index]
-        return {"health": fighter.health, "stocks": fighter.stocks}
-
     def _read_actions(self, actions: dict[str, Any]) -> tuple[int, int]:
         if type(actions) is dict and len(actions) == 2:  # the usual case, checked quickly
-            first, second = (actions.get(agent) for agent in self.possible_agents)
+            first = actions.get(AGENTS[0])
+            second = actions.get(AGENTS[1])
             if (
                 type(first) is int  # not bool, not a numpy integer: those take the long way
                 and type(second) is int

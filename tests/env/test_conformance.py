@@ -17,17 +17,17 @@ import vooga_env
 from vooga_env import parallel as parallel_module
 
 
-def test_parallel_api():
-    parallel_api_test(vooga_env.parallel_env(), num_cycles=1000)
+def test_parallel_api(backend):
+    parallel_api_test(vooga_env.parallel_env(backend=backend), num_cycles=1000)
 
 
 @pytest.mark.parametrize("config", ["default", "water", "platforms", "small"])
-def test_aec_api(config):
-    api_test(vooga_env.env(config=config), num_cycles=300)
+def test_aec_api(config, backend):
+    api_test(vooga_env.env(config=config, backend=backend), num_cycles=300)
 
 
-def test_seed():
-    seed_test(lambda: vooga_env.env(arena={"spawn_jitter": 10.0}), num_cycles=300)
+def test_seed(backend):
+    seed_test(lambda: vooga_env.env(arena={"spawn_jitter": 10.0}, backend=backend), num_cycles=300)
 
 
 def test_max_cycles():
@@ -39,8 +39,8 @@ def test_render():
     render_test(lambda render_mode=None: vooga_env.env(render_mode=render_mode))
 
 
-def test_state_is_inside_its_space():
-    env = vooga_env.parallel_env()
+def test_state_is_inside_its_space(backend):
+    env = vooga_env.parallel_env(backend=backend)
     env.reset(seed=0)
     rng = np.random.default_rng(0)
     for _ in range(200):

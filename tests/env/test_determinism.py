@@ -36,13 +36,13 @@ def assert_same(one, two):
                 assert a[key].tobytes() == b[key].tobytes()
 
 
-def test_same_seed_same_trajectory_over_1500_steps_with_resets():
-    overrides = dict(arena={"spawn_jitter": 15.0}, max_cycles=300)
+def test_same_seed_same_trajectory_over_1500_steps_with_resets(backend):
+    overrides = dict(arena={"spawn_jitter": 15.0}, max_cycles=300, backend=backend)
     assert_same(run(7, 1500, **overrides), run(7, 1500, **overrides))
 
 
-def test_water_stage_is_deterministic_too():
-    assert_same(run(3, 600, "water"), run(3, 600, "water"))
+def test_water_stage_is_deterministic_too(backend):
+    assert_same(run(3, 600, "water", backend=backend), run(3, 600, "water", backend=backend))
 
 
 def test_seed_changes_the_spawns_when_jitter_is_on():

@@ -41,7 +41,7 @@ def place(fighter, state, width, mirrored):
 @settings(max_examples=200, deadline=None)
 @given(fighter_state, fighter_state, st.integers(0, 899))
 def test_mirrored_world_swaps_observations(first, second, steps):
-    env = vooga_env.parallel_env()
+    env = vooga_env.parallel_env(backend="engine")
     env.reset(seed=0)
     fight = env.fight
     width = fight.config.arena.width

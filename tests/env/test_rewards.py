@@ -8,7 +8,7 @@ from vooga_env.rewards import HitAndRingOutReward
 
 
 def rollout(seed, **overrides):
-    env = vooga_env.parallel_env(**overrides)
+    env = vooga_env.parallel_env(backend="engine", **overrides)
     env.reset(seed=seed)
     rng = np.random.default_rng(seed)
     rewards = []
@@ -27,7 +27,7 @@ def test_rewards_are_zero_sum(edge):
 def test_edge_shaping_telescopes_to_the_change_in_stage_room():
     env, shaped = rollout(5, max_cycles=200, rewards={"edge": 2.0})
     _, plain = rollout(5, max_cycles=200, rewards={"edge": 0.0})
-    start_env = vooga_env.parallel_env(max_cycles=200)
+    start_env = vooga_env.parallel_env(max_cycles=200, backend="engine")
     start_env.reset(seed=5)
     start = HitAndRingOutReward._edge_advantage(start_env.fight)
     end = HitAndRingOutReward._edge_advantage(env.fight)

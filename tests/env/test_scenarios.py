@@ -13,7 +13,7 @@ def face_off(gap, **overrides):
 
     Without the edge shaping, so that rewards are the hits' and ring-outs' alone.
     """
-    env = vooga_env.parallel_env(rewards={"edge": 0.0}, **overrides)
+    env = vooga_env.parallel_env(rewards={"edge": 0.0}, backend="engine", **overrides)
     env.reset(seed=0)
     one, two = env.fight.fighters
     two.x = one.right + gap
@@ -127,7 +127,7 @@ def test_stocks_respawn_the_loser_until_the_last_one():
 
 
 def test_fighters_standing_idle_stay_put_for_10000_frames():
-    env = vooga_env.parallel_env(frame_skip=1, max_cycles=10_000)
+    env = vooga_env.parallel_env(frame_skip=1, max_cycles=10_000, backend="engine")
     env.reset(seed=0)
     start = [(f.x, f.y) for f in env.fight.fighters]
     run(env, (IDLE, IDLE), 10_000)

@@ -45,7 +45,7 @@ class Scenario:
     overrides: tuple[tuple[str, object], ...] = ()
 
     def make_env(self) -> vooga_env.FightParallelEnv:
-        return vooga_env.parallel_env(config=self.config, **dict(self.overrides))
+        return vooga_env.parallel_env(config=self.config, backend="engine", **dict(self.overrides))
 
 
 SCENARIOS = (

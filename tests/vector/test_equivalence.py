@@ -109,7 +109,10 @@ def side_by_side(
 ) -> dict:
     """N single envs and one batch of N, the same seeds and actions; compared at every step."""
     overrides = overrides or dict(max_cycles=150, fighter={"health": 20.0})
-    singles = [vooga_env.parallel_env(config=config, **overrides) for _ in range(fights_in_batch)]
+    singles = [
+        vooga_env.parallel_env(config=config, backend="engine", **overrides)
+        for _ in range(fights_in_batch)
+    ]
     observations = [env.reset(seed=seed + i)[0] for i, env in enumerate(singles)]
     fights = VectorFight(fights_in_batch, config=config, backend=backend, **overrides)
     batch_obs = fights.reset(seed=seed)

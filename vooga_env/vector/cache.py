@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import hashlib
 from pathlib import Path
+from types import ModuleType
 
 HERE = Path(__file__).resolve().parent
 SOURCES = (
@@ -41,3 +42,11 @@ def drop_stale_kernel_cache() -> None:
         stamp.write_text(digest)
     except OSError:  # a read-only install: numba caches elsewhere (NUMBA_CACHE_DIR) or not at all
         pass
+
+
+def load_kernel() -> ModuleType:
+    """The compiled kernel's module (numba needed), its stale cache dropped first."""
+    drop_stale_kernel_cache()
+    from vooga_env.vector import kernel
+
+    return kernel

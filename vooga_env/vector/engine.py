@@ -62,12 +62,9 @@ class VectorFight:
                 raise ImportError(
                     "backend='numba' needs numba: pip install 'vooga-env[fast]' (or numba)"
                 )
-            from vooga_env.vector.cache import drop_stale_kernel_cache
+            from vooga_env.vector.cache import load_kernel
 
-            drop_stale_kernel_cache()
-            from vooga_env.vector import kernel
-
-            self._kernel = kernel.Kernel(FightParams.from_config(self.config))
+            self._kernel = load_kernel().Kernel(FightParams.from_config(self.config))
         else:
             self._kernel = None
         self.backend = backend

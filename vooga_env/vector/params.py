@@ -36,9 +36,12 @@ def check_supported(config: FightConfig, reward_fn: object = None) -> None:
             f"collisions.neutral = {collisions.neutral!r}: the batched engine runs 'rebound' only"
         )
     # collisions.friends never fires: the two fighters are always on different teams
-    if reward_fn is not None and type(reward_fn) is not HitAndRingOutReward:
+    if reward_fn is not None and not (
+        type(reward_fn) is HitAndRingOutReward and reward_fn.config == config.rewards
+    ):
         raise UnsupportedConfig(
-            f"reward_fn = {reward_fn!r}: the batched engine computes HitAndRingOutReward only"
+            f"reward_fn = {reward_fn!r}: the batched engine computes HitAndRingOutReward of the "
+            "config's [rewards] only"
         )
 
 

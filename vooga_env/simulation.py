@@ -1,0 +1,151 @@
+"""What a `FightParallelEnv` steps: the physics engine's `Fight`, or the same rules compiled.
+
+Two backends behind one small interface, bit-identical in everything the env returns
+(`tests/env/test_backends.py` plays both side by side):
+
+- `"engine"`: `vooga_env.fight.Fight` over the VOOGA physics engine. It runs every config, any
+  `reward_fn`, and rendering; about 100 µs a step.
+- `"compiled"`: the batched engine's numba kernel (`vooga_env.vector`) for one fight, about 8 µs a
+  step; the `fast` extra, the default wiring and the default reward only.
+- `"auto"` (the default) picks "compiled" when it can run the env as asked, else "engine".
+
+A step returns `(observations (2, 41) float32, rewards [r0, r1], terminated, truncated, winner,
+info_columns)`: `winner` is 0 or 1, -1 for a draw, -2 while the fight goes on; `info_columns`
+holds one [fighter_0, fighter_1] pair per name in `INFO_KEYS`, as plain Python numbers.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Protocol
+
+import numpy as np
+
+from vooga_env.config import FightConfig
+from vooga_env.fight import Fight
+from vooga_env.observations import observe_both
+from vooga_env.rewards import HitAndRingOutReward, RewardFn
+
+BACKENDS = ("auto", "engine", "compiled")
+INFO_KEYS = (
+    "health",
+    "stocks",
+    "hits_landed",  # hits not blocked, by attacker
+    "hits_blocked",  # blocked hits, by defender
+    "damage_dealt",
+    "damage_taken",
+    "rung_out",
+    "knocked_out",
+)
+GOING_ON, DRAW = -2, -1
+
+StepResult = tuple[np.ndarray, list[float], bool, bool, int, tuple[list, ...]]
+
+
+class Simulation(Protocol):
+    """One fight, reset by a numpy Generator and stepped by a pair of action indices."""
+
+    backend: str
+
+    def reset(self, rng: np.random.Generator) -> np.ndarray:
+        """Start a new fight (spawn jitter drawn from `rng`); both observations, (2, 41)."""
+        ...
+
+    def step(self, first: int, second: int) -> StepResult: ...
+
+    def observe(self) -> np.ndarray:
+        """Both fighters' observations now, (2, 41) float32."""
+        ...
+
+    def fighter_status(self) -> list[dict[str, Any]]:
+        """Each fighter's top-left `x`, `y` (px), `health` and `stocks` now."""
+        ...
+
+
+class EngineSimulation:
+    """`Fight` over the physics engine, rewarded by `reward_fn` (called with the step's events)."""
+
+    backend = "engine"
+
+    def __init__(self, config: FightConfig, reward_fn: RewardFn | None = None) -> None:
+        self.fight = Fight(config)
+        self.reward_fn = reward_fn or HitAndRingOutReward(config.rewards)
+        self._max_cycles = config.max_cycles
+
+    def reset(self, rng: np.random.Generator) -> np.ndarray:
+        self.fight.reset(rng)
+        reset_reward = getattr(self.reward_fn, "reset", None)
+        if reset_reward is not None:
+            reset_reward(self.fight)
+        return observe_both(self.fight)
+
+    def step(self, first: int, second: int) -> StepResult:
+        fight = self.fight
+        events = fight.step((first, second))
+        rewards = self.reward_fn(fight, events)
+        terminated = events.over
+        truncated = not terminated and fight.steps >= self._max_cycles
+        landed, blocked = [0, 0], [0, 0]
+        for hit in events.hits:
+            if hit.blocked:
+                blocked[hit.defender] += 1
+            else:
+                landed[hit.attacker] += 1
+        winner = GOING_ON
+        if terminated or truncated:
+            leader = fight.winner()
+            winner = DRAW if leader is None else leader
+        one, two = fight.fighters
+        columns = (
+            [one.health, two.health],
+            [one.stocks, two.stocks],
+            landed,
+            blocked,
+            events.damage_dealt,
+            events.damage_taken,
+            events.rung_out,
+            events.knocked_out,
+        )
+        rewards = [float(rewards[0]), float(rewards[1])]
+        return observe_both(fight), rewards, terminated, truncated, winner, columns
+
+    def observe(self) -> np.ndarray:
+        return observe_both(self.fight)
+
+    def fighter_status(self) -> list[dict[str, Any]]:
+        return [
+            {"x": f.x, "y": f.y, "health": f.health, "stocks": f.stocks}
+            for f in self.fight.fighters
+        ]
+
+
+def make_simulation(
+    config: FightConfig,
+    backend: str = "auto",
+    reward_fn: RewardFn | None = None,
+    render_mode: str | None = None,
+) -> Simulation:
+    """The simulation `backend` names; "auto": compiled when it can run this env, else engine."""
+    if backend not in BACKENDS:
+        raise ValueError(f"backend = {backend!r} is not allowed: one of {', '.join(BACKENDS)}")
+    if backend == "engine":
+        return EngineSimulation(config, reward_fn)
+    from vooga_env.vector.engine import numba_available
+    from vooga_env.vector.params import UnsupportedConfig, check_supported
+
+    reason = None
+    if render_mode is not None:
+        reason = f"render_mode = {render_mode!r}: the viewer draws the engine's fight"
+    elif not numba_available():
+        reason = "numba is not installed: pip install 'vooga-env[fast]' (or numba)"
+    else:
+        try:
+            check_supported(config, reward_fn)
+        except UnsupportedConfig as error:
+            reason = str(error)
+    if reason is None:
+        from vooga_env.vector.single import CompiledSimulation
+
+        return CompiledSimulation(config)
+    if backend == "compiled":
+        raise ValueError(f"backend = 'compiled' cannot run this env: {reason}; use 'engine'")
+    return EngineSimulation(config, reward_fn)
