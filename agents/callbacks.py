@@ -29,7 +29,11 @@ def learner_won(info: dict[str, Any]) -> float | None:
 
 
 class CurriculumCallback(BaseCallback):
-    """Scripted opponents from weak to strong, promoted on the win rate over recent games."""
+    """Scripted opponents from weak to strong, promoted on the win rate over recent games.
+
+    Each env draws its opponent for every game: from the current rung, or (the last
+    `review_ratio` of the envs) from a rung drawn among the current and earlier ones.
+    """
 
     def __init__(self, config: CurriculumConfig, seed: int, stage: int = 0) -> None:
         super().__init__()
@@ -39,21 +43,24 @@ class CurriculumCallback(BaseCallback):
         self.rng = np.random.default_rng(seed)
 
     def _on_training_start(self) -> None:
-        self._assign()
+        for index in range(self.training_env.num_envs):
+            self._draw(index)
 
     def _on_step(self) -> bool:
-        for done, info in zip(self.locals["dones"], self.locals["infos"]):
-            if done and info.get("opponent") == self.opponent:
-                outcome = learner_won(info)
-                if outcome is not None:
-                    self.results.append(outcome)
+        fighters = self.config.rung(self.stage)
+        for index, (done, info) in enumerate(zip(self.locals["dones"], self.locals["infos"])):
+            if not done:
+                continue
+            outcome = learner_won(info)
+            if outcome is not None and info.get("opponent") in fighters:
+                self.results.append(outcome)
+            self._draw(index)
         if len(self.results) == self.config.window:
             rate = float(np.mean(self.results))
             self.logger.record("curriculum/win_rate", rate)
             if rate >= self.config.promote_win_rate and self.stage + 1 < len(self.config.ladder):
                 self.stage += 1
                 self.results.clear()
-                self._assign()
                 print(
                     f"step {self.num_timesteps}: won {rate:.0%} of the last {self.config.window}"
                     f" games, promoted to {self.opponent}",
@@ -64,19 +71,19 @@ class CurriculumCallback(BaseCallback):
 
     @property
     def opponent(self) -> str:
+        """The current rung (fighters joined by '+' when it is mixed)."""
         return self.config.ladder[self.stage]
 
-    def _assign(self) -> None:
-        """Most envs fight the current rung; `review_ratio` of them an earlier or equal one."""
+    def _draw(self, index: int) -> None:
+        """Env `index`'s opponent for its next game."""
         envs = self.training_env.num_envs
-        reviewers = int(round(envs * self.config.review_ratio))
-        for index in range(envs):
-            name = self.opponent
-            if index >= envs - reviewers:
-                name = self.config.ladder[int(self.rng.integers(self.stage + 1))]
-            self.training_env.env_method(
-                "set_opponent", name, int(self.rng.integers(2**31)), indices=[index]
-            )
+        reviewer = index >= envs - int(round(envs * self.config.review_ratio))
+        stage = int(self.rng.integers(self.stage + 1)) if reviewer else self.stage
+        fighters = self.config.rung(stage)
+        name = fighters[int(self.rng.integers(len(fighters)))]
+        self.training_env.env_method(
+            "set_opponent", name, int(self.rng.integers(2**31)), indices=[index]
+        )
 
     def state(self) -> dict[str, Any]:
         return {"stage": self.stage, "opponent": self.opponent}

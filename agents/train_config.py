@@ -33,6 +33,9 @@ class PPOConfig:
 class CurriculumConfig:
     """Scripted opponents from weak to strong; promoted when the learner's win rate over the
     last `window` games passes `promote_win_rate`. `review_ratio` of the envs replay earlier rungs.
+
+    A rung is one fighter's name, or several joined by "+" ("rush+turtle"): a mixed rung, each
+    game against one of them drawn at random. Every env draws its opponent again for each game.
     """
 
     ladder: tuple[str, ...] = ("idle", "random", "rush")
@@ -41,9 +44,13 @@ class CurriculumConfig:
     review_ratio: float = 0.25
 
     def __post_init__(self) -> None:
-        for name in self.ladder:
-            if name not in SCRIPTED:
-                raise ConfigError(f"ladder = {name!r} is not allowed: one of {', '.join(SCRIPTED)}")
+        for rung in self.ladder:
+            for name in rung.split("+"):
+                if name not in SCRIPTED:
+                    raise ConfigError(
+                        f"ladder = {rung!r} is not allowed: {name!r} is not one of "
+                        f"{', '.join(SCRIPTED)} (several joined by '+' make a mixed rung)"
+                    )
         if not self.ladder:
             raise ConfigError("ladder = [] is not allowed: name at least one opponent")
         if not 0.0 < self.promote_win_rate <= 1.0:
@@ -52,6 +59,10 @@ class CurriculumConfig:
             )
         if not 0.0 <= self.review_ratio < 1.0:
             raise ConfigError(f"review_ratio = {self.review_ratio} is not allowed: in [0, 1)")
+
+    def rung(self, stage: int) -> tuple[str, ...]:
+        """The fighters of rung `stage`."""
+        return tuple(self.ladder[stage].split("+"))
 
 
 @dataclass(frozen=True)

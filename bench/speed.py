@@ -130,8 +130,8 @@ def gym_steps() -> Callable[[int], int]:
     return gymnasium_steps(gymnasium.make("vooga_env/Fight-v0", opponent="random"))
 
 
-def batched_steps(size: int, backend: str) -> Callable[[int], int]:
-    fights = VectorFight(size, backend=backend)
+def batched_steps(size: int, backend: str, threads: int | None = None) -> Callable[[int], int]:
+    fights = VectorFight(size, backend=backend, threads=threads)
     fights.reset(seed=0)
     actions = np.random.default_rng(0).integers(10, size=(16, size, 2))
     fights.step(actions[0])  # compiles (or loads) the numba kernel before any timing
@@ -271,12 +271,26 @@ def main(argv: Sequence[str] | None = None) -> dict:
     batched = []
     for backend in backends:
         for size in args.sizes:
-            rate, reference = side_by_side(
-                batched_steps(size, backend), cartpole_vector_steps(size), seconds, rounds
-            )
-            batched.append(
-                row(f"VectorFight N={size} ({backend})", rate, reference, n=size, backend=backend)
-            )
+            # the default thread count, and one thread as well where the default is more
+            default = VectorFight(size, backend=backend).threads
+            for threads in dict.fromkeys((default, 1)):
+                rate, reference = side_by_side(
+                    batched_steps(size, backend, threads),
+                    cartpole_vector_steps(size),
+                    seconds,
+                    rounds,
+                )
+                label = f"{threads} thread{'s' if threads > 1 else ''}"
+                batched.append(
+                    row(
+                        f"VectorFight N={size} ({backend}, {label})",
+                        rate,
+                        reference,
+                        n=size,
+                        backend=backend,
+                        threads=threads,
+                    )
+                )
     print_table("batched, env-steps/s", batched, "env-steps/s", "CartPole make_vec")
 
     ppo: list[dict] = []

@@ -169,11 +169,6 @@ class FightParallelEnv(ParallelEnv):
             )
         return fight
 
-    @property
-    def reward_fn(self) -> RewardFn | None:
-        """The engine backend's reward function (the compiled one computes the default reward)."""
-        return getattr(self.simulation, "reward_fn", None)
-
     def fighter_status(self) -> list[dict[str, Any]]:
         """Each fighter's top-left `x`, `y` (px), `health` and `stocks` now, fighter_0's first."""
         return self.simulation.fighter_status()

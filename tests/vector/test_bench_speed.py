@@ -28,10 +28,12 @@ def test_quick_speed_benchmark_prints_tables_and_writes_json(tmp_path):
     assert result.returncode == 0, result.stdout + result.stderr
     report = json.loads(out.read_text())
     assert report["quick"] is True
-    assert [row["name"] for row in report["single"]] == [
-        "ParallelEnv.step",
+    names = [row["name"] for row in report["single"]]
+    assert names[0].startswith("ParallelEnv.step (default: ")
+    assert names[1:] == [
         "AEC env, one cycle (both fighters)",
         "Gymnasium env (vs random)",
+        "ParallelEnv.step, backend='engine'",
     ]
     assert {row["n"] for row in report["batched"]} == {1, 16}
     assert {row["backend"] for row in report["batched"]} >= {"numpy"}

@@ -105,6 +105,7 @@ def side_by_side(
     fights_in_batch: int = 6,
     seed: int = 40,
     config: str = "default",
+    threads: int | None = None,
     **overrides,
 ) -> dict:
     """N single envs and one batch of N, the same seeds and actions; compared at every step."""
@@ -114,7 +115,9 @@ def side_by_side(
         for _ in range(fights_in_batch)
     ]
     observations = [env.reset(seed=seed + i)[0] for i, env in enumerate(singles)]
-    fights = VectorFight(fights_in_batch, config=config, backend=backend, **overrides)
+    fights = VectorFight(
+        fights_in_batch, config=config, backend=backend, threads=threads, **overrides
+    )
     batch_obs = fights.reset(seed=seed)
     names = ["rush", "turtle", "zoner", "edge_guard", "random"]
     policies = [
@@ -178,6 +181,12 @@ def side_by_side(
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_a_batch_of_fights_matches_single_envs_step_by_step(backend):
     counts = side_by_side(backend, STEPS[backend])
+    assert all(count > 0 for count in counts.values()), counts
+
+
+@pytest.mark.skipif(not numba_available(), reason="numba not installed")
+def test_a_batch_stepped_on_three_threads_matches_single_envs():
+    counts = side_by_side("numba", STEPS["numba"], threads=3)
     assert all(count > 0 for count in counts.values()), counts
 
 

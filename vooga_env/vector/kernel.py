@@ -9,6 +9,7 @@ Imported only when numba is installed.
 
 from __future__ import annotations
 
+import numba
 import numpy as np
 
 from vooga_env.vector.kernel_parts import _observe, _reset, jit
@@ -78,7 +79,7 @@ class Kernel:
         actions = np.ascontiguousarray(actions, dtype=np.int64)
         _step(self.fp, self.ip, self.blocks, self.attacks_f, self.attacks_i, actions,
               s.floats, s.ints, s.flags, s.counters, s.values, events.damage, events.hits,
-              events.outs, events.over, rewards, truncated, winner)  # fmt: skip
+              events.outs, events.over, rewards, truncated, winner, 0, s.size)  # fmt: skip
 
     def step_observe(
         self,
@@ -89,29 +90,44 @@ class Kernel:
         truncated: np.ndarray,
         winner: np.ndarray,
         out: np.ndarray,
-        index: np.ndarray,
+        bounds: np.ndarray,
     ) -> None:
-        """`step` with `events` zeroed first, then `observe` of the fights `index`: one call.
+        """`step` with `events` zeroed first, then `observe` into `out`: one compiled call.
 
-        The single env's step (`single.py`): one compiled call instead of three Python ones.
+        `bounds` (int64, ascending, from 0 to N) cuts the fights into chunks, stepped on numba's
+        threads at once when there are two or more (each fight is independent, so the results do
+        not depend on the cut).
         """
         p = self.params
-        _step_observe(self.fp, self.ip, self.blocks, self.attacks_f, self.attacks_i, actions,
-                      s.floats, s.ints, s.flags, s.counters, s.values, events.damage, events.hits,
-                      events.outs, events.over, rewards, truncated, winner, index, out,
-                      p.stage_left, p.stage_right, p.config.max_cycles,
-                      p.config.stocks)  # fmt: skip
+        run = _step_observe if bounds.shape[0] == 2 else _step_observe_chunks
+        first = (bounds[0], bounds[1]) if bounds.shape[0] == 2 else (bounds,)
+        run(*first, self.fp, self.ip, self.blocks, self.attacks_f, self.attacks_i, actions,
+            s.floats, s.ints, s.flags, s.counters, s.values, events.damage, events.hits,
+            events.outs, events.over, rewards, truncated, winner, out, p.stage_left,
+            p.stage_right, p.config.max_cycles, p.config.stocks)  # fmt: skip
 
 
 @jit
-def _step_observe(fp, ip, blocks, af, ai, actions, fl, it, fg, ct, values, damage, hits, outs,
-                  over, rewards, truncated, winner, index, out, stage_left, stage_right,
+def _step_observe(start, stop, fp, ip, blocks, af, ai, actions, fl, it, fg, ct, values, damage,
+                  hits, outs, over, rewards, truncated, winner, out, stage_left, stage_right,
                   max_cycles, start_stocks):  # fmt: skip
-    damage[:] = 0.0
-    hits[:] = 0
-    outs[:] = False
-    over[:] = False
+    """Zero the events, step and observe the fights start..stop-1."""
+    damage[:, :, start:stop] = 0.0
+    hits[:, :, start:stop] = 0
+    outs[:, :, start:stop] = False
+    over[start:stop] = False
     _step(fp, ip, blocks, af, ai, actions, fl, it, fg, ct, values, damage, hits, outs, over,
-          rewards, truncated, winner)  # fmt: skip
-    _observe(fp, ip, af, ai, index, out, fl, it, fg, ct, stage_left, stage_right, max_cycles,
-             start_stocks)  # fmt: skip
+          rewards, truncated, winner, start, stop)  # fmt: skip
+    _observe(fp, ip, af, ai, np.arange(start, stop), out, fl, it, fg, ct, stage_left,
+             stage_right, max_cycles, start_stocks)  # fmt: skip
+
+
+@numba.njit(cache=True, nogil=True, parallel=True)
+def _step_observe_chunks(bounds, fp, ip, blocks, af, ai, actions, fl, it, fg, ct, values, damage,
+                         hits, outs, over, rewards, truncated, winner, out, stage_left,
+                         stage_right, max_cycles, start_stocks):  # fmt: skip
+    """`_step_observe` of each chunk bounds[c]..bounds[c + 1] - 1, the chunks on threads."""
+    for c in numba.prange(bounds.shape[0] - 1):
+        _step_observe(bounds[c], bounds[c + 1], fp, ip, blocks, af, ai, actions, fl, it, fg, ct,
+                      values, damage, hits, outs, over, rewards, truncated, winner, out,
+                      stage_left, stage_right, max_cycles, start_stocks)  # fmt: skip

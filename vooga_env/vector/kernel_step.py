@@ -34,8 +34,10 @@ def _step(
     rewards,
     truncated,
     winner,
+    start,
+    stop,
 ):
-    """One env step of every fight (see the module docstring), in place.
+    """One env step of the fights start..stop-1 (see the module docstring), in place.
 
     State blocks `fl`, `it`, `fg`, `ct` (rows: `kernel_parts.S_*`), events `damage`, `hits`,
     `outs`, `over` (state.StepEvents), outputs `rewards`, `truncated`, `winner`.
@@ -95,7 +97,7 @@ def _step(
     block_vertical = np.empty((n_blocks, 2), dtype=np.bool_)
     block_normal = np.empty((n_blocks, 2))
     block_toi = np.empty((n_blocks, 2))
-    for i in range(fl.shape[2]):
+    for i in range(start, stop):
         for _frame in range(p_frame_skip):
             # ---- Fight._control, fighter 0 then fighter 1
             for f in range(2):

@@ -29,6 +29,7 @@ class CompiledSimulation:
         self.kernel = load_kernel().Kernel(FightParams.from_config(config))
         self.state = FightState(1)
         self._index = np.zeros(1, dtype=np.int64)
+        self._bounds = np.array([0, 1], dtype=np.int64)
         self._actions = np.zeros((1, 2), dtype=np.int64)
         self._events = StepEvents(1)
         self._rewards = np.zeros((1, 2))
@@ -60,7 +61,7 @@ class CompiledSimulation:
             self._truncated,
             self._winner,
             out,
-            self._index,
+            self._bounds,
         )
         columns = (
             self._health.tolist(),
