@@ -16,6 +16,7 @@ from vooga_env.elo import START_RATING, update
 from vooga_env.models import FrozenPolicy, load_model
 
 STATE_FILE = "train_state.json"
+NORMALIZER_FILE = "vec_normalize.pkl"  # VecNormalize's running statistics, for --resume
 
 
 def learner_won(info: dict[str, Any]) -> float | None:
@@ -190,11 +191,16 @@ class StateCheckpointCallback(CheckpointCallback):
 
 
 def save_checkpoint(model: Any, folder: Path, parts: list[Any]) -> None:
-    """Write latest.zip and train_state.json so that a crash mid-write leaves the old pair."""
+    """Write latest.zip, the reward normaliser's statistics (if any) and train_state.json, each
+    atomically, so that a crash mid-write leaves the previous checkpoint whole."""
     folder.mkdir(parents=True, exist_ok=True)
     temporary = folder / "latest.tmp.zip"
     model.save(temporary)
     os.replace(temporary, folder / "latest.zip")
+    normalizer = model.get_vec_normalize_env()
+    if normalizer is not None:
+        normalizer.save(str(folder / f"{NORMALIZER_FILE}.tmp"))
+        os.replace(folder / f"{NORMALIZER_FILE}.tmp", folder / NORMALIZER_FILE)
     state = {"num_timesteps": int(model.num_timesteps)}
     for part in parts:
         state.update(part.state())

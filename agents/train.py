@@ -14,6 +14,7 @@ import argparse
 import dataclasses
 import importlib.util
 import json
+import shutil
 import sys
 import time
 from pathlib import Path
@@ -27,6 +28,7 @@ from stable_baselines3.common.utils import set_random_seed
 from stable_baselines3.common.vec_env import DummyVecEnv, VecEnv, VecNormalize
 
 from agents.callbacks import (
+    NORMALIZER_FILE,
     STATE_FILE,
     CurriculumCallback,
     SelfPlayCallback,
@@ -91,11 +93,20 @@ def train(
     resume: bool = False,
     progress: bool = True,
     minutes: float | None = None,
+    overwrite: bool = False,
 ) -> Path:
     """Run (or continue) one training for at most `minutes` (default: the config's budget).
 
-    Returns the final model's path.
+    A fresh run refuses a folder that holds one already, unless `overwrite` (which empties it
+    first): no run's checkpoints are lost, or mixed with another's. Returns the final model's path.
     """
+    if not resume and (folder / "latest.zip").exists():
+        if not overwrite:
+            raise FileExistsError(
+                f"{folder} holds a run already: --resume continues it, --overwrite starts over "
+                "(deleting it), or pick another --out"
+            )
+        shutil.rmtree(folder)
     torch.set_num_threads(1)
     set_random_seed(config.seed)
     folder.mkdir(parents=True, exist_ok=True)
@@ -106,6 +117,8 @@ def train(
         if not latest.is_file():
             raise FileNotFoundError(f"--resume: no checkpoint at {latest}")
         state = json.loads((folder / STATE_FILE).read_text())
+        if isinstance(envs, VecNormalize) and (folder / NORMALIZER_FILE).is_file():
+            envs = VecNormalize.load(str(folder / NORMALIZER_FILE), envs.venv)
         model = PPO.load(latest, env=envs, device="cpu")
     else:
         (folder / "train_config.json").write_text(json.dumps(dataclasses.asdict(config), indent=2))
@@ -144,6 +157,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", type=int)
     parser.add_argument("--steps", type=int, help="total timesteps (overrides the config)")
     parser.add_argument("--resume", action="store_true", help="continue from OUT/latest.zip")
+    parser.add_argument("--overwrite", action="store_true", help="start over in a used OUT")
     parser.add_argument("--minutes", type=float, help="stop after this much wall time")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     args = parser.parse_args(argv)
@@ -154,7 +168,12 @@ def main(argv: list[str] | None = None) -> int:
     folder = args.out or Path("runs") / config.name
     try:
         final = train(
-            config, folder, resume=args.resume, progress=not args.no_progress, minutes=args.minutes
+            config,
+            folder,
+            resume=args.resume,
+            progress=not args.no_progress,
+            minutes=args.minutes,
+            overwrite=args.overwrite,
         )
     except KeyboardInterrupt:
         print(
@@ -163,7 +182,7 @@ def main(argv: list[str] | None = None) -> int:
             file=sys.stderr,
         )
         return 130
-    except FileNotFoundError as error:
+    except (FileNotFoundError, FileExistsError) as error:
         parser.error(str(error))
     print(f"trained: {final}")
     return 0

@@ -1,11 +1,12 @@
 """The shipped training recipe, measured: train it, then fight it against every scripted fighter.
 
-    python -m bench.train_recipe [--config default] [--minutes 15] [--games 200] [--out runs/recipe]
+    python -m bench.train_recipe [--config default] [--minutes 15] [--games 200] [--out DIR]
     python -m bench.train_recipe --config selfplay    # also: latest vs first snapshot
     python -m bench.train_recipe --quick [--selfplay] # seconds: proves the path works (CI)
 
 Prints the model's win rate against `rush` over `--games` games (with a 95% Wilson interval) and
-an Elo round-robin of the model and every scripted fighter, and writes both to OUT/result.json.
+an Elo round-robin of the model and every scripted fighter, and writes both to OUT/result.json
+(OUT: runs/recipe/CONFIG, emptied first).
 The claims it checks (issue 4): >= 80% against rush and a higher Elo than every scripted fighter;
 for self-play, the latest snapshot beats the first in >= 70% of games, both sampling their actions
 as snapshots do in self-play (and, for reference, both taking the argmax).
@@ -79,7 +80,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--minutes", type=float, default=15.0)
     parser.add_argument("--games", type=int, default=200)
     parser.add_argument("--round-robin-games", type=int, default=40)
-    parser.add_argument("--out", type=Path, default=Path("runs/recipe"))
+    parser.add_argument("--out", type=Path, help="run folder (default runs/recipe/CONFIG)")
     parser.add_argument("--quick", action="store_true", help="a smoke config and a few games")
     parser.add_argument("--selfplay", action="store_true", help="with --quick: the self-play path")
     args = parser.parse_args(argv)
@@ -87,8 +88,10 @@ def main(argv: list[str] | None = None) -> int:
         args.config = "smoke_selfplay" if args.selfplay else "smoke"
         args.minutes, args.games, args.round_robin_games = 1.0, 4, 2
     config = load_train_config(args.config)
+    args.out = args.out or Path("runs/recipe") / config.name
     start = time.monotonic()
-    model = train(config, args.out, progress=not args.quick, minutes=args.minutes)
+    # a benchmark starts over: its folder is its own
+    model = train(config, args.out, progress=not args.quick, minutes=args.minutes, overwrite=True)
     trained = time.monotonic() - start
     result = {
         "config": config.name,

@@ -4,7 +4,7 @@ Two backends behind one small interface, bit-identical in everything the env ret
 (`tests/env/test_backends.py` plays both side by side):
 
 - `"engine"`: `vooga_env.fight.Fight` over the VOOGA physics engine. It runs every config, any
-  `reward_fn`, and rendering; about 100 µs a step.
+  `reward_fn`, and rendering; about 75 µs a step.
 - `"compiled"`: the batched engine's numba kernel (`vooga_env.vector`) for one fight, about 8 µs a
   step; the `fast` extra, the default wiring and the default reward only.
 - `"auto"` (the default) picks "compiled" when it can run the env as asked, else "engine".

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from agents.train import main, train
+from agents.train import main, make_envs, train
 from agents.train_config import load_train_config
 from vooga_env.config import ConfigError
 from vooga_env.models import load_model
@@ -36,6 +36,40 @@ def test_resume_continues_from_the_last_checkpoint(tmp_path):
     final = train(second, tmp_path, resume=True, progress=False)
     assert load_model(final).num_timesteps == 2048
     assert (tmp_path / "checkpoints" / "ppo_2048_steps.zip").is_file()
+
+
+def test_a_fresh_run_never_overwrites_an_old_one_unless_told(tmp_path, capsys):
+    config = load_train_config("smoke", total_timesteps=512)
+    train(config, tmp_path, progress=False)
+    stale = tmp_path / "snapshots" / "snapshot_0.zip"
+    stale.parent.mkdir()
+    stale.write_bytes(b"an older run's file")
+    with pytest.raises(FileExistsError, match="--resume continues it, --overwrite starts over"):
+        train(config, tmp_path, progress=False)
+    argv = ["--config", "smoke", "--out", str(tmp_path), "--no-progress"]
+    with pytest.raises(SystemExit) as exit_info:
+        main(argv)
+    assert exit_info.value.code == 2 and "holds a run already" in capsys.readouterr().err
+    assert main([*argv, "--overwrite"]) == 0
+    assert not stale.exists()  # started over: nothing of the old run is left to mix in
+
+
+def test_resume_keeps_the_reward_normaliser_statistics(tmp_path):
+    from stable_baselines3.common.vec_env import VecNormalize
+
+    path = tmp_path / "normalised.toml"
+    path.write_text(
+        'fight = "small"\ntotal_timesteps = 1024\nn_envs = 2\ncheckpoint_every = 512\n'
+        "[ppo]\nn_steps = 256\nbatch_size = 256\nn_epochs = 1\nnormalize_reward = true\n"
+    )
+    out = tmp_path / "run"
+    train(load_train_config(path), out, progress=False)
+    saved = out / "vec_normalize.pkl"
+    first = VecNormalize.load(str(saved), make_envs(load_train_config(path)).venv).ret_rms.count
+    assert first >= 1024
+    train(load_train_config(path, total_timesteps=2048), out, resume=True, progress=False)
+    second = VecNormalize.load(str(saved), make_envs(load_train_config(path)).venv).ret_rms.count
+    assert second >= first + 1024  # went on from the saved statistics, not from scratch
 
 
 def test_selfplay_builds_a_snapshot_pool_with_ratings(tmp_path):

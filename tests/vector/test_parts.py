@@ -97,6 +97,22 @@ def test_bad_arguments_fail_clearly():
         fights.step(np.zeros((3, 2), dtype=int))
     with pytest.raises(ValueError, match="0..9"):
         fights.step(np.full((2, 2), 10))
+    with pytest.raises(ValueError, match="threads must be >= 1, got 0"):
+        VectorFight(2, threads=0)
+    with pytest.raises(TypeError, match="threads must be an int"):
+        VectorFight(2, threads=1.5)
+    with pytest.raises(ValueError, match="threads = 2 needs backend='numba'"):
+        VectorFight(2, backend="numpy", threads=2)
+
+
+def test_threads_default_to_one_per_core_for_big_batches_only():
+    pytest.importorskip("numba")
+    import numba
+
+    assert VectorFight(16, backend="numba").threads == 1
+    big = VectorFight(4096, backend="numba")
+    assert big.threads == min(numba.get_num_threads(), 4096 // 256)
+    assert VectorFight(8, backend="numba", threads=32).threads == 8  # never more than fights
 
 
 def test_a_4096_fight_batch_holds_its_state_in_under_64_mib():

@@ -99,12 +99,14 @@ class Kernel:
         not depend on the cut).
         """
         p = self.params
-        run = _step_observe if bounds.shape[0] == 2 else _step_observe_chunks
-        first = (bounds[0], bounds[1]) if bounds.shape[0] == 2 else (bounds,)
-        run(*first, self.fp, self.ip, self.blocks, self.attacks_f, self.attacks_i, actions,
-            s.floats, s.ints, s.flags, s.counters, s.values, events.damage, events.hits,
-            events.outs, events.over, rewards, truncated, winner, out, p.stage_left,
-            p.stage_right, p.config.max_cycles, p.config.stocks)  # fmt: skip
+        arguments = (self.fp, self.ip, self.blocks, self.attacks_f, self.attacks_i, actions,
+                     s.floats, s.ints, s.flags, s.counters, s.values, events.damage, events.hits,
+                     events.outs, events.over, rewards, truncated, winner, out, p.stage_left,
+                     p.stage_right, p.config.max_cycles, p.config.stocks)  # fmt: skip
+        if bounds.shape[0] == 2:
+            _step_observe(bounds[0], bounds[1], *arguments)
+        else:
+            _step_observe_chunks(bounds, *arguments)
 
 
 @jit
