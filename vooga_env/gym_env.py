@@ -21,7 +21,7 @@ class FightEnv(gymnasium.Env):
     `edge_guard`), a saved model path (.zip), any callable `obs -> action`, or an object with SB3's
     `predict`. `seat`: 0 or 1 for the learner's side, or "random" to draw it each episode (the
     observations and actions are mirrored, so a policy plays either side). Everything else goes to
-    `FightParallelEnv`: `config`, `render_mode`, `reward_fn`, and config overrides.
+    `FightParallelEnv`: `config`, `render_mode`, `reward_fn`, `backend`, and config overrides.
 
     Observations, actions, rewards and infos are the learner's, as in the parallel env;
     `info["seat"]`, `info["opponent"]` (its name) and `info["opponent_action"]` are added.

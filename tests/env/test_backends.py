@@ -133,3 +133,21 @@ else:
     raise AssertionError("backend='compiled' ran without numba")
 """
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_the_single_agent_env_takes_the_backend_and_plays_the_same_game():
+    import gymnasium
+
+    games = []
+    for backend in ("engine", "compiled"):
+        env = gymnasium.make("vooga_env/Fight-v0", opponent="rush", seat="random", backend=backend)
+        assert env.unwrapped.fight_env.backend == backend
+        observation, _ = env.reset(seed=4)
+        trace = [observation.tobytes()]
+        for step in range(300):
+            observation, reward, terminated, truncated, info = env.step(step % 10)
+            trace.append((observation.tobytes(), reward, terminated, truncated, info))
+            if terminated or truncated:
+                trace.append(env.reset()[0].tobytes())
+        games.append(trace)
+    assert games[0] == games[1]
