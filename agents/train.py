@@ -1,6 +1,7 @@
 """Train a fighter with Stable-Baselines3 PPO: a scripted curriculum or self-play.
 
     python -m agents.train [--config default] [--out runs/NAME] [--seed N] [--steps N] [--resume]
+    python -m agents.train --config selfplay --init runs/default/final.zip  # then self-play
 
 Config-driven (`configs/train/*.toml`). Checkpoints every `checkpoint_every` steps into
 `OUT/checkpoints/`, and `OUT/latest.zip` + `OUT/train_state.json` always hold the newest one:
@@ -38,6 +39,7 @@ from agents.callbacks import (
 from agents.train_config import TrainConfig, load_train_config
 from vooga_env.config import ConfigError
 from vooga_env.gym_env import FightEnv
+from vooga_env.models import load_model
 
 
 def make_envs(config: TrainConfig) -> VecEnv:
@@ -74,6 +76,21 @@ def build_model(config: TrainConfig, envs: VecEnv, folder: Path) -> PPO:
         device="cpu",
         verbose=0,
     )
+
+
+def start_from(model: PPO, path: str, config: TrainConfig) -> None:
+    """Copy a saved model's weights into `model` (its own hyperparameters stay the config's)."""
+    try:
+        saved = load_model(path)
+    except (FileNotFoundError, ValueError) as error:  # no file, or spaces that don't fit
+        raise ConfigError(f"init = {path!r}: {error}") from error
+    try:
+        model.policy.load_state_dict(saved.policy.state_dict())
+    except RuntimeError as error:
+        raise ConfigError(
+            f"init = {path!r}: its network does not fit net_arch = {list(config.ppo.net_arch)} "
+            f"({str(error).splitlines()[0]})"
+        ) from error
 
 
 class StopAfter(BaseCallback):
@@ -123,6 +140,8 @@ def train(
     else:
         (folder / "train_config.json").write_text(json.dumps(dataclasses.asdict(config), indent=2))
         model = build_model(config, envs, folder)
+        if config.init:
+            start_from(model, config.init, config)
     if config.mode == "selfplay":
         opponents: Any = SelfPlayCallback(config.selfplay, folder / "snapshots", config.seed, state)
         (folder / "snapshots").mkdir(exist_ok=True)
@@ -156,13 +175,16 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--out", type=Path, help="run folder (default runs/CONFIG)")
     parser.add_argument("--seed", type=int)
     parser.add_argument("--steps", type=int, help="total timesteps (overrides the config)")
+    parser.add_argument("--init", help="start from this saved model's weights (overrides)")
     parser.add_argument("--resume", action="store_true", help="continue from OUT/latest.zip")
     parser.add_argument("--overwrite", action="store_true", help="start over in a used OUT")
     parser.add_argument("--minutes", type=float, help="stop after this much wall time")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     args = parser.parse_args(argv)
     try:
-        config = load_train_config(args.config, seed=args.seed, total_timesteps=args.steps)
+        config = load_train_config(
+            args.config, seed=args.seed, total_timesteps=args.steps, init=args.init
+        )
     except ConfigError as error:
         parser.error(str(error))
     folder = args.out or Path("runs") / config.name
@@ -182,7 +204,7 @@ def main(argv: list[str] | None = None) -> int:
             file=sys.stderr,
         )
         return 130
-    except (FileNotFoundError, FileExistsError) as error:
+    except (FileNotFoundError, FileExistsError, ConfigError) as error:
         parser.error(str(error))
     print(f"trained: {final}")
     return 0

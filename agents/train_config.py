@@ -93,6 +93,7 @@ class TrainConfig:
     n_envs: int = 8
     seed: int = 0
     minutes: float = 0.0  # wall-time budget; training stops there (0: no budget)
+    init: str = ""  # a saved model (.zip) to start from, e.g. the curriculum's; "": a new network
     checkpoint_every: int = 50_000
     eval_games: int = 200
     ppo: PPOConfig = PPOConfig()

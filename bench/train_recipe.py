@@ -2,6 +2,8 @@
 
     python -m bench.train_recipe [--config default] [--minutes 15] [--games 200] [--out DIR]
     python -m bench.train_recipe --config selfplay    # also: latest vs first snapshot
+    python -m bench.train_recipe --config selfplay --init runs/recipe/default/final.zip \
+        --out runs/recipe/selfplay_after                  # self-play from the recipe's model
     python -m bench.train_recipe --quick [--selfplay] # seconds: proves the path works (CI)
 
 Prints the model's win rate against `rush` over `--games` games (with a 95% Wilson interval) and
@@ -81,13 +83,14 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--games", type=int, default=200)
     parser.add_argument("--round-robin-games", type=int, default=40)
     parser.add_argument("--out", type=Path, help="run folder (default runs/recipe/CONFIG)")
+    parser.add_argument("--init", help="start from this saved model (then self-play)")
     parser.add_argument("--quick", action="store_true", help="a smoke config and a few games")
     parser.add_argument("--selfplay", action="store_true", help="with --quick: the self-play path")
     args = parser.parse_args(argv)
     if args.quick:
         args.config = "smoke_selfplay" if args.selfplay else "smoke"
         args.minutes, args.games, args.round_robin_games = 1.0, 4, 2
-    config = load_train_config(args.config)
+    config = load_train_config(args.config, init=args.init)
     args.out = args.out or Path("runs/recipe") / config.name
     start = time.monotonic()
     # a benchmark starts over: its folder is its own

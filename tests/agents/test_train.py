@@ -1,5 +1,6 @@
 """Smoke runs of the training script: files written and loadable, resume, interrupts keep work."""
 
+import dataclasses
 import json
 import signal
 import subprocess
@@ -52,6 +53,26 @@ def test_a_fresh_run_never_overwrites_an_old_one_unless_told(tmp_path, capsys):
     assert exit_info.value.code == 2 and "holds a run already" in capsys.readouterr().err
     assert main([*argv, "--overwrite"]) == 0
     assert not stale.exists()  # started over: nothing of the old run is left to mix in
+
+
+def test_init_starts_from_a_saved_models_weights_or_says_why_not(tmp_path):
+    import torch
+
+    from agents.train import build_model, start_from
+
+    config = load_train_config("smoke", total_timesteps=512)
+    saved = train(config, tmp_path / "first", progress=False)
+    model = build_model(config, make_envs(config), tmp_path)
+    start_from(model, str(saved), config)
+    expected = load_model(saved).policy.state_dict()
+    for name, tensor in model.policy.state_dict().items():
+        assert torch.equal(tensor, expected[name]), name
+    wider = load_train_config("smoke", init=str(saved))
+    wider = dataclasses.replace(wider, ppo=dataclasses.replace(wider.ppo, net_arch=(8,)))
+    with pytest.raises(ConfigError, match="init = .*does not fit net_arch = \\[8\\]"):
+        train(wider, tmp_path / "second", progress=False)
+    with pytest.raises(ConfigError, match="init = 'nowhere.zip': no saved model"):
+        train(load_train_config("smoke", init="nowhere.zip"), tmp_path / "third", progress=False)
 
 
 def test_resume_keeps_the_reward_normaliser_statistics(tmp_path):
