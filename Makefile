@@ -11,6 +11,7 @@ $(STAMP): pyproject.toml constraints.txt
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -c constraints.txt -e '.[dev,render,train,fast]'
+	$(BIN)/python -m vooga_env.vector.cache
 	touch $(STAMP)
 
 demo: $(STAMP)

@@ -3,7 +3,8 @@
 numba's `cache=True` notices a change to a compiled function's own file only, not to the helpers
 and constants it takes from other files (`kernel_parts`, `frame`, `state`, ...), which are
 compiled into it. So the kernel's cache files are dropped whenever any of those sources changed
-since they were written (a stamp of their hash sits beside the cache).
+since they were written (a stamp of their hash sits beside the cache). `python -m
+vooga_env.vector.cache` compiles them all ahead of a first step (`make` does it at install).
 """
 
 from __future__ import annotations
@@ -50,3 +51,29 @@ def load_kernel() -> ModuleType:
     from vooga_env.vector import kernel
 
     return kernel
+
+
+def warm_up() -> float:
+    """Compile (or load) every kernel the envs use, now rather than at a first step; seconds."""
+    import time
+
+    import numpy as np
+
+    from vooga_env.parallel import parallel_env
+    from vooga_env.vector.engine import VectorFight
+
+    start = time.perf_counter()
+    env = parallel_env(backend="compiled")
+    env.reset(seed=0)
+    env.step({agent: 0 for agent in env.possible_agents})
+    for threads in (1, 2):  # the serial step, and the one in chunks on threads
+        fights = VectorFight(2, backend="numba", threads=threads)
+        fights.reset(seed=0)
+        fights.step(np.zeros((2, 2), dtype=np.int64))
+        fights.advance(np.zeros((2, 2), dtype=np.int64))
+    return time.perf_counter() - start
+
+
+if __name__ == "__main__":
+    print("numba: compiling the fight kernels once (cached on disk for later runs)...", flush=True)
+    print(f"numba: ready in {warm_up():.0f} s")
