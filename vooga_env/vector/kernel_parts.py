@@ -9,6 +9,9 @@ from __future__ import annotations
 
 import numba
 import numpy as np
+from numba import types
+from numba.core import cgutils
+from numba.extending import intrinsic
 
 from vooga_env.observations import HITSTUN_SCALE, VELOCITY_SCALE
 from vooga_env.physics.contact import OVERLAP_EPSILON
@@ -48,6 +51,22 @@ for _names in (FIGHTER_FLOATS, FIGHTER_INTS, FIGHTER_FLAGS, FIGHT_COUNTERS, FIGH
 MUL_HI, MUL_LO = 0x2360ED051FC65DA4, 0x4385DF649FCCF645  # PCG64's 128-bit multiplier
 # a position's terms: itself, its increment, the friction's slide, separation, push, hit
 MAX_TERMS = 6
+
+
+@intrinsic
+def _stack(typingctx, size, dtype):
+    """A pointer to `size` (a literal) values of `dtype` on the stack, for numba.carray: scratch
+    that no other array aliases (np.empty's may alias the state), so the compiler need not
+    reload it after each store to the state."""
+    if not isinstance(size, types.IntegerLiteral):
+        return None
+    sig = types.CPointer(dtype.instance_type)(size, dtype)
+
+    def codegen(context, builder, signature, args):
+        item = context.get_data_type(dtype.instance_type)
+        return cgutils.alloca_once(builder, item, size=size.literal_value)
+
+    return sig, codegen
 
 
 @inline
@@ -219,9 +238,15 @@ def _observe(
     """
     width = fp[F_WIDTH]
     half_width, half_height = fp[W] / 2.0, fp[H] / 2.0
-    features = np.empty((2, 19), dtype=np.float32)
-    position = np.empty((2, 2))  # (x, y) features in float64, as fighter_0 sees them
-    reach = np.empty((2, 2), dtype=np.bool_)
+    # the parameters as locals, the scratch on the stack: the stores to `out` may alias an
+    # array's values, which are then loaded again (see _stack)
+    stage_width, full_health, fighter_height = fp[W], fp[HEALTH], fp[F_HEIGHT]
+    # (x, y) features in float64, as fighter_0 sees them
+    position = numba.carray(_stack(4, np.float64), (2, 2))
+    reach = numba.carray(_stack(4, np.bool_), (2, 2))
+    box = numba.carray(_stack(9, np.float64), (3, 3))  # move: width, height, offset_y
+    for m in range(1, 3):
+        box[m, 0], box[m, 1], box[m, 2] = af[5, m], af[6, m], af[7, m]
     air = ip[AIR_JUMPS]
     for i in index:
         for f in range(2):  # Fight.reach
@@ -230,47 +255,44 @@ def _observe(
             direction = fl[S_FACING, f, i] if toward == 0.0 else (1.0 if toward > 0.0 else -1.0)
             left, top = fl[S_X, o, i], fl[S_Y, o, i]
             right, bottom = left + width, top + fl[S_HEIGHT, o, i]
-            feet = fl[S_Y, f, i] + fl[S_HEIGHT, f, i] - fp[F_HEIGHT]
+            feet = fl[S_Y, f, i] + fl[S_HEIGHT, f, i] - fighter_height
             for m in range(1, 3):
-                hw = af[5, m]
+                hw = box[m, 0]
                 hx = fl[S_X, f, i] + width if direction > 0 else fl[S_X, f, i] - hw
-                hy = feet + af[7, m]
+                hy = feet + box[m, 2]
                 reach[f, m - 1] = (
-                    hx < right and left < hx + hw and hy < bottom and top < hy + af[6, m]
+                    hx < right and left < hx + hw and hy < bottom and top < hy + box[m, 1]
                 )
         for f in range(2):
             m = it[S_MOVE, f, i]
             position[f, 0] = 1.0 * (fl[S_X, f, i] + width / 2.0 - half_width) / half_width
             position[f, 1] = (fl[S_Y, f, i] + fl[S_HEIGHT, f, i] / 2.0 - half_height) / half_height
-            features[f, 0] = _clip32(position[f, 0])
-            features[f, 1] = _clip32(position[f, 1])
-            features[f, 2] = _clip32(1.0 * fl[S_VX, f, i] / VELOCITY_SCALE)
-            features[f, 3] = _clip32(fl[S_VY, f, i] / VELOCITY_SCALE)
-            features[f, 4] = _clip32(1.0 * fl[S_FACING, f, i])
-            features[f, 5] = _clip32(fl[S_HEALTH, f, i] / fp[HEALTH])
-            features[f, 6] = _clip32((fp[HEALTH] - fl[S_HEALTH, f, i]) / fp[HEALTH])
-            features[f, 7] = 1.0 if fg[S_ON_GROUND, f, i] else 0.0
-            features[f, 8] = _clip32(it[S_JUMPS_LEFT, f, i] / air if air else 1.0)
-            features[f, 9] = 1.0 if m == 1 else 0.0
-            features[f, 10] = 1.0 if m == 2 else 0.0
-            features[f, 11] = 1.0 if fg[S_BLOCKING, f, i] else 0.0
-            features[f, 12] = 1.0 if fg[S_CROUCHING, f, i] else 0.0
-            features[f, 13] = _clip32(it[S_MOVE_FRAME, f, i] / ai[2, m] if m != 0 else 0.0)
-            features[f, 14] = 1.0 if fg[S_HIT_ACTIVE, f, i] else 0.0
-            features[f, 15] = _clip32(it[S_HITSTUN, f, i] / HITSTUN_SCALE)
-            features[f, 16] = _clip32(it[S_STOCKS, f, i] / start_stocks)
-            features[f, 17] = 1.0 if reach[f, 0] else 0.0
-            features[f, 18] = 1.0 if reach[f, 1] else 0.0
+            _feature(out, i, f, 0, _clip32(position[f, 0]), True)
+            _feature(out, i, f, 1, _clip32(position[f, 1]), False)
+            _feature(out, i, f, 2, _clip32(1.0 * fl[S_VX, f, i] / VELOCITY_SCALE), True)
+            _feature(out, i, f, 3, _clip32(fl[S_VY, f, i] / VELOCITY_SCALE), False)
+            _feature(out, i, f, 4, _clip32(1.0 * fl[S_FACING, f, i]), True)
+            health = fl[S_HEALTH, f, i]
+            _feature(out, i, f, 5, _clip32(health / full_health), False)
+            _feature(out, i, f, 6, _clip32((full_health - health) / full_health), False)
+            _feature(out, i, f, 7, np.float32(1.0 if fg[S_ON_GROUND, f, i] else 0.0), False)
+            jumps = _clip32(it[S_JUMPS_LEFT, f, i] / air if air else 1.0)
+            _feature(out, i, f, 8, jumps, False)
+            _feature(out, i, f, 9, np.float32(1.0 if m == 1 else 0.0), False)
+            _feature(out, i, f, 10, np.float32(1.0 if m == 2 else 0.0), False)
+            _feature(out, i, f, 11, np.float32(1.0 if fg[S_BLOCKING, f, i] else 0.0), False)
+            _feature(out, i, f, 12, np.float32(1.0 if fg[S_CROUCHING, f, i] else 0.0), False)
+            progress = _clip32(it[S_MOVE_FRAME, f, i] / ai[2, m] if m != 0 else 0.0)
+            _feature(out, i, f, 13, progress, False)
+            _feature(out, i, f, 14, np.float32(1.0 if fg[S_HIT_ACTIVE, f, i] else 0.0), False)
+            _feature(out, i, f, 15, _clip32(it[S_HITSTUN, f, i] / HITSTUN_SCALE), False)
+            _feature(out, i, f, 16, _clip32(it[S_STOCKS, f, i] / start_stocks), False)
+            _feature(out, i, f, 17, np.float32(1.0 if reach[f, 0] else 0.0), False)
+            _feature(out, i, f, 18, np.float32(1.0 if reach[f, 1] else 0.0), False)
         remaining = _clip32(1.0 - ct[S_STEPS, i] / max_cycles)
         for me in range(2):
             side = 1.0 if me == 0 else -1.0
             other = 1 - me
-            for k in range(19):
-                own, theirs = features[me, k], features[other, k]
-                if me == 1 and (k == 0 or k == 2 or k == 4):  # SIDED: mirrored
-                    own, theirs = -own, -theirs
-                out[i, me, k] = own
-                out[i, me, 19 + k] = theirs
             own_x, own_y = side * position[me, 0], position[me, 1]
             out[i, me, 19] = _clip32(side * position[other, 0] - own_x)
             out[i, me, 20] = _clip32(position[other, 1] - own_y)
@@ -278,9 +300,21 @@ def _observe(
             first, second = centre - stage_left, stage_right - centre
             if side < 0:
                 first, second = second, first
-            out[i, me, 38] = _clip32(first / fp[W])
-            out[i, me, 39] = _clip32(second / fp[W])
+            out[i, me, 38] = _clip32(first / stage_width)
+            out[i, me, 39] = _clip32(second / stage_width)
             out[i, me, 40] = remaining
+
+
+@inline
+def _feature(out, i, f, k, value, sided):
+    """Fighter f's feature k (float32, as fighter_0 sees it) into out[i, f, k] (its own) and
+    out[i, 1 - f, 19 + k] (its opponent's); fighter_1 sees the SIDED ones negated."""
+    if sided:
+        out[i, f, k] = -value if f == 1 else value
+        out[i, 1 - f, 19 + k] = -value if f == 0 else value
+    else:
+        out[i, f, k] = value
+        out[i, 1 - f, 19 + k] = value
 
 
 @inline

@@ -7,6 +7,7 @@ expression from the scalar originals; `frame.py` is the same with array operatio
 
 from __future__ import annotations
 
+import numba
 import numpy as np
 
 from vooga_env.vector import kernel_parts as kp
@@ -75,28 +76,26 @@ def _step(
     half = p_f_width / 2
     width = p_f_width
     dt, factor = p_dt, p_factor
-    counts = np.zeros((2, 2, 2), dtype=np.int64)
     partials = np.empty(terms.shape[3] + 1)
-    rubbing = np.empty((2, 2), dtype=np.bool_)  # fighter, axis: slowed by friction
-    carry = np.empty((2, 2))
-    low = np.empty((2, 2, 2))  # fighter, kind (position, velocity), axis
-    high = np.empty((2, 2, 2))
-    inc = np.empty((2, 2))  # fighter, axis
-    has_slide = np.empty(2, dtype=np.bool_)
-    has_walk = np.empty(2, dtype=np.bool_)
-    increments = np.empty((2, 2))
-    hit_toi = np.zeros(2)
-    collided = np.empty(2, dtype=np.bool_)
-    on_immovable = np.empty(2, dtype=np.bool_)
-    grounded = np.empty(2, dtype=np.bool_)
-    hit = np.empty(2, dtype=np.bool_)
-    hit_move = np.empty(2, dtype=np.int64)
-    hit_damage = np.empty(2)
-    hit_blocked = np.empty(2, dtype=np.bool_)
-    block_found = np.empty((n_blocks, 2), dtype=np.bool_)
-    block_vertical = np.empty((n_blocks, 2), dtype=np.bool_)
-    block_normal = np.empty((n_blocks, 2))
-    block_toi = np.empty((n_blocks, 2))
+    # scratch on the stack (see kp._stack): fighter, kind (position, velocity), axis
+    counts = numba.carray(kp._stack(8, np.int64), (2, 2, 2))
+    rubbing = numba.carray(kp._stack(4, np.bool_), (2, 2))  # fighter, axis: slowed by friction
+    carry = numba.carray(kp._stack(4, np.float64), (2, 2))
+    low = numba.carray(kp._stack(8, np.float64), (2, 2, 2))
+    high = numba.carray(kp._stack(8, np.float64), (2, 2, 2))
+    inc = numba.carray(kp._stack(4, np.float64), (2, 2))  # fighter, axis
+    has_slide = numba.carray(kp._stack(2, np.bool_), 2)
+    has_walk = numba.carray(kp._stack(2, np.bool_), 2)
+    increments = numba.carray(kp._stack(4, np.float64), (2, 2))
+    hit_toi = numba.carray(kp._stack(2, np.float64), 2)
+    hit_toi[0] = hit_toi[1] = 0.0
+    collided = numba.carray(kp._stack(2, np.bool_), 2)
+    on_immovable = numba.carray(kp._stack(2, np.bool_), 2)
+    grounded = numba.carray(kp._stack(2, np.bool_), 2)
+    hit = numba.carray(kp._stack(2, np.bool_), 2)
+    hit_move = numba.carray(kp._stack(2, np.int64), 2)
+    hit_damage = numba.carray(kp._stack(2, np.float64), 2)
+    hit_blocked = numba.carray(kp._stack(2, np.bool_), 2)
     for i in range(start, stop):
         for _frame in range(p_frame_skip):
             # ---- Fight._control, fighter 0 then fighter 1
@@ -208,15 +207,34 @@ def _step(
                         increments[f, 0],
                         increments[f, 1],
                     )
-                    block_found[b, f] = found
-                    block_vertical[b, f] = vertical
-                    block_normal[b, f] = normal
-                    block_toi[b, f] = toi
                     if found:
                         collided[f] = True
                         if vertical and normal < 0.0:
                             on_immovable[f] = True
                             grounded[f] = True
+                        # ReactionRebound, no bouncy edge, with friction: done here, as it
+                        # changes only low, high, carry and rubbing, which the hits and the push
+                        # (ahead of it in the engine) neither read nor write
+                        normal = -normal  # seen from the fighter
+                        axis = 1 if vertical else 0
+                        if axis == 1:
+                            face, own, size = by + 0.0, fl[kp.S_HEIGHT, f, i], bh
+                        else:
+                            face, own, size = bx + 0.0, p_f_width, bw
+                        if normal > 0.0:
+                            surface = face - own
+                            high[f, 0, axis] = kp._py_min(high[f, 0, axis], surface)
+                            high[f, 1, axis] = kp._py_min(high[f, 1, axis], 0.0)
+                        else:
+                            surface = face + size
+                            low[f, 0, axis] = kp._py_max(low[f, 0, axis], surface)
+                            low[f, 1, axis] = kp._py_max(low[f, 1, axis], 0.0)
+                        if p_friction > 0.0:  # slow_down: the strongest (largest carry) wins
+                            along = 1 - axis
+                            rest_carry = 1.0 * ((1.0 - toi) * dt) * factor
+                            if not rubbing[f, along] or rest_carry > carry[f, along]:
+                                carry[f, along] = rest_carry
+                            rubbing[f, along] = True
             pair_found, pair_vertical, pair_normal, pair_toi, pair_depth = _contact(
                 fl[kp.S_X, 0, i],
                 fl[kp.S_X, 0, i] + width,
@@ -344,30 +362,6 @@ def _step(
                         kp._add(terms, counts, 0, 1, axis, common_velocity - speed0)
                         kp._add(terms, counts, 1, 0, axis, remaining * (common_increment - along1))
                         kp._add(terms, counts, 1, 1, axis, common_velocity - speed1)
-            for b in range(blocks.shape[1]):  # ReactionRebound, no bouncy edge, with friction
-                for f in range(2):
-                    if not block_found[b, f]:
-                        continue
-                    normal = -block_normal[b, f]  # seen from the fighter
-                    axis = 1 if block_vertical[b, f] else 0
-                    if axis == 1:
-                        face, own, size = blocks[1, b] + 0.0, fl[kp.S_HEIGHT, f, i], blocks[3, b]
-                    else:
-                        face, own, size = blocks[0, b] + 0.0, p_f_width, blocks[2, b]
-                    if normal > 0.0:
-                        surface = face - own
-                        high[f, 0, axis] = kp._py_min(high[f, 0, axis], surface)
-                        high[f, 1, axis] = kp._py_min(high[f, 1, axis], 0.0)
-                    else:
-                        surface = face + size
-                        low[f, 0, axis] = kp._py_max(low[f, 0, axis], surface)
-                        low[f, 1, axis] = kp._py_max(low[f, 1, axis], 0.0)
-                    if p_friction > 0.0:  # slow_down: the strongest (largest carry) wins
-                        along = 1 - axis
-                        rest_carry = 1.0 * ((1.0 - block_toi[b, f]) * dt) * factor
-                        if not rubbing[f, along] or rest_carry > carry[f, along]:
-                            carry[f, along] = rest_carry
-                        rubbing[f, along] = True
             # ---- the update and keep_in_bounds
             for f in range(2):
                 for axis in range(2):
