@@ -298,7 +298,7 @@ def main(argv: Sequence[str] | None = None) -> dict:
         print("\nPPO: skipped, stable-baselines3 is not installed (the `train` extra)")
     elif not args.no_ppo:
         n_envs, n_steps = 16, 32 if args.quick else 128
-        ppo = ppo_rows(n_envs, n_steps, 1 if args.quick else 4, 1 if args.quick else 2)
+        ppo = ppo_rows(n_envs, n_steps, 1 if args.quick else 4, 1 if args.quick else 5)
         print_table(
             f"PPO learn(), n_envs={n_envs}, n_steps={n_steps}",
             ppo,
