@@ -1,8 +1,9 @@
 """`CompiledSimulation`: one fight on the numba kernel, behind `FightParallelEnv`.
 
-The batched engine's kernel at N = 1, with every buffer allocated once, so a step costs two
-compiled calls and a few list conversions. Spawn jitter comes from the env's own Generator (its
-PCG64 state is handed to the kernel's stream and back), so seeding is exactly the engine's.
+The batched engine's kernel at N = 1, with every buffer allocated once, so a step costs one
+compiled call (both frames and both observations) and a few list conversions. Spawn jitter comes
+from the env's own Generator (its PCG64 state is handed to the kernel's stream and back), so
+seeding is exactly the engine's.
 """
 
 from __future__ import annotations
