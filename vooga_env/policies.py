@@ -8,6 +8,7 @@ fighter and a trained model stand in for each other. Scripted fighters read only
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -221,9 +222,17 @@ class PredictPolicy(Policy):
 
 
 def make_policy(spec: str | Path | Policy | Callable | Any, seed: int | None = None) -> Policy:
-    """A Policy from a scripted name, a saved model (.zip), a Policy, a predict-er or a callable."""
+    """A Policy from a scripted name, a saved model (.zip), a Policy, a predict-er or a callable.
+
+    A Policy given with a seed comes back as a copy reseeded with it (the original may be shared,
+    say by several envs, and each must draw its own numbers to be repeatable).
+    """
     if isinstance(spec, Policy):
-        return spec
+        if seed is None:
+            return spec
+        policy = copy.copy(spec)
+        policy.reset(seed)
+        return policy
     if isinstance(spec, (str, Path)):
         if str(spec) in SCRIPTED:
             return SCRIPTED[str(spec)](seed)

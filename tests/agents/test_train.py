@@ -109,6 +109,16 @@ def test_selfplay_builds_a_snapshot_pool_with_ratings(tmp_path):
         load_model(out / "snapshots" / f"{name}.zip")
 
 
+@pytest.mark.parametrize("name", ["smoke", "smoke_selfplay"])
+def test_the_seed_makes_a_run_repeatable(tmp_path, name):
+    import torch
+
+    config = load_train_config(name, total_timesteps=4096)
+    first, second = (train(config, tmp_path / run, progress=False) for run in ("a", "b"))
+    one, two = (load_model(path).policy.state_dict() for path in (first, second))
+    assert all(torch.equal(one[key], two[key]) for key in one)
+
+
 def test_ctrl_c_keeps_the_last_checkpoint_and_resume_finishes(tmp_path):
     config = tmp_path / "long.toml"
     config.write_text(
