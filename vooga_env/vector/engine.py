@@ -167,8 +167,6 @@ class VectorFight:
 
     def advance(self, actions: np.ndarray):
         """One env step without the auto-reset: (events, rewards, terminated, truncated, winner)."""
-        if self._needs_reset:
-            raise RuntimeError("step() before reset(): call reset() first")
         actions = self._check_actions(actions)
         state, params, size = self.state, self.params, self.num_fights
         events = StepEvents(size)
@@ -198,8 +196,6 @@ class VectorFight:
 
     def _compiled_step(self, actions: np.ndarray):
         """`advance` and `observe` in one compiled call, the fights in chunks on threads."""
-        if self._needs_reset:
-            raise RuntimeError("step() before reset(): call reset() first")
         actions = self._check_actions(actions)
         size = self.num_fights
         events = StepEvents(size)
@@ -256,6 +252,9 @@ class VectorFight:
         s.potential[index] = edge_advantage(p, s, index)  # HitAndRingOutReward.reset
 
     def _check_actions(self, actions: Any) -> np.ndarray:
+        """The actions as an (N, 2) int64 array, once the batch has been reset."""
+        if self._needs_reset:
+            raise RuntimeError("step() before reset(): call reset() first")
         actions = np.asarray(actions)
         if actions.shape != (self.num_fights, 2):
             raise ValueError(f"actions must have shape ({self.num_fights}, 2), got {actions.shape}")
