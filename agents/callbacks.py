@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 from stable_baselines3.common.callbacks import BaseCallback, CheckpointCallback
 
-from agents.train_config import CurriculumConfig, SelfPlayConfig
+from .train_config import CurriculumConfig, SelfPlayConfig
 from vooga_env.elo import START_RATING, update
 from vooga_env.models import FrozenPolicy, load_model
 

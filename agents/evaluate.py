@@ -15,8 +15,8 @@ import sys
 from collections.abc import Sequence
 from typing import Any
 
-from agents import common
-from agents.tournament import format_tournament
+from . import common
+from .tournament import format_tournament
 from vooga_env.elo import Tournament, round_robin
 from vooga_env.match import wilson_interval
 from vooga_env.policies import SCRIPTED

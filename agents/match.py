@@ -15,7 +15,7 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from agents import common
+from . import common
 from vooga_env.match import MatchResult, run_match
 from vooga_env.recording import check_writer, save_animation
 from vooga_env.replay import Replay, ReplayError, ReplayMismatch, play_back

@@ -18,7 +18,7 @@ import time
 from collections.abc import Callable, Collection, Iterable, Sequence
 from typing import Any
 
-from agents import common
+from . import common
 from vooga_env.actions import Action
 from vooga_env.config import FightConfig
 from vooga_env.match import EpisodeRecord, episode_seeds

@@ -14,7 +14,7 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from agents import common
+from . import common
 from vooga_env.elo import DRAW_SCORE, Tournament, round_robin
 from vooga_env.policies import SCRIPTED
 

@@ -28,7 +28,7 @@ from stable_baselines3.common.env_util import make_vec_env
 from stable_baselines3.common.utils import set_random_seed
 from stable_baselines3.common.vec_env import DummyVecEnv, VecEnv, VecNormalize
 
-from agents.callbacks import (
+from .callbacks import (
     NORMALIZER_FILE,
     STATE_FILE,
     CurriculumCallback,
@@ -36,7 +36,7 @@ from agents.callbacks import (
     StateCheckpointCallback,
     save_checkpoint,
 )
-from agents.train_config import TrainConfig, load_train_config
+from .train_config import TrainConfig, load_train_config
 from vooga_env.config import ConfigError
 from vooga_env.gym_env import FightEnv
 from vooga_env.models import load_model
