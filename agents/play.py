@@ -183,7 +183,7 @@ def main(
 def _summary(game: Game, saver: ReplaySaver | None) -> None:
     for match in game.matches:
         if not match.rounds:
-            continue
+            continue  # quit before its first round ended
         wins, losses = match.count("win"), match.count("loss")
         verdict = {"win": "you won", "loss": f"{game.opponent_name} won", "draw": "drawn"}
         rounds = ", ".join(f"{r.outcome} ({r.how})" for r in match.rounds)

@@ -35,10 +35,13 @@ class Screens:
         self.big = pygame.font.Font(None, max(48, height // 5))
         self.medium = pygame.font.Font(None, max(28, height // 14))
         self.small = pygame.font.Font(None, max(20, height // 24))
+        self.boxes: list[pygame.Rect] = []
+        """Where this frame's texts and panels went (a test checks that none overlap)."""
 
     def draw(self) -> None:
         game, surface = self.game, self.surface
         surface.blit(self.viewer.paint(), (0, 0))
+        self.boxes = []
         if game.phase in (Phase.COUNTDOWN, Phase.FIGHT):
             self._round_line()
         if game.help_visible and game.phase in (Phase.COUNTDOWN, Phase.FIGHT):
@@ -59,16 +62,14 @@ class Screens:
     # -- the screens -----------------------------------------------------------------------
 
     def _round_line(self) -> None:
+        """The round and the match score under the timer, in a match of several rounds."""
         game = self.game
-        you, them = game.match.count("win"), game.match.count("loss")
         rounds = game.settings.rounds
-        where = f"round {game.round_number} of {rounds}   " if rounds > 1 else ""
-        self._text(
-            f"{where}you {you} - {them} {game.opponent_name}",
-            self.small,
-            TEXT,
-            midtop=self._at(0.5, 0.12),
-        )
+        if rounds == 1:
+            return
+        you, them = game.match.count("win"), game.match.count("loss")
+        text = f"round {game.round_number} of {rounds}   you {you} - {them} {game.opponent_name}"
+        self._text(text, self.small, TEXT, midtop=self._at(0.5, 0.12))
 
     def _countdown(self) -> None:
         game, settings = self.game, self.game.settings
@@ -172,7 +173,8 @@ class Screens:
         """ "you" over the person's fighter, until the first key."""
         fighter = self.game.env.fight.fighters[self.game.settings.seat]
         centre = (round(fighter.x + fighter.width / 2), round(fighter.y) - 6)
-        self._text("you", self.small, FIGHTER_COLOURS[fighter.index], midbottom=centre)
+        mark = self.small.render("you", True, FIGHTER_COLOURS[fighter.index])
+        self.surface.blit(mark, mark.get_rect(midbottom=centre))  # moves with it: not a box
 
     def _card(self, lines: list[pygame.Surface]) -> None:
         """Rendered lines, centred in a dark card in the upper middle (clear of any stage)."""
@@ -184,6 +186,7 @@ class Screens:
         card = pygame.Rect(0, top, width, height)
         card.centerx = surface.get_width() // 2
         pygame.draw.rect(surface, PANEL, card, border_radius=10)
+        self.boxes.append(card)
         y = card.top + gap
         for line in lines:
             surface.blit(line, line.get_rect(midtop=(card.centerx, y)))
@@ -200,15 +203,13 @@ class Screens:
         surface = self.surface
         box = panel.get_rect(midbottom=(surface.get_width() // 2, surface.get_height() - 6))
         surface.blit(panel, box)
+        self.boxes.append(box)
         for row, text in enumerate(rendered):
             surface.blit(text, text.get_rect(midtop=(box.centerx, box.top + 6 + row * step)))
 
     def _hint(self) -> None:
-        text = self.small.render(CONTROL_HELP, True, DIM)
-        surface = self.surface
-        surface.blit(
-            text, text.get_rect(bottomright=(surface.get_width() - 10, surface.get_height() - 8))
-        )
+        width, height = self.surface.get_size()
+        self._text(CONTROL_HELP, self.small, DIM, bottomright=(width - 10, height - 8))
 
     def _shade(self, alpha: int) -> None:
         shade = pygame.Surface(self.surface.get_size(), pygame.SRCALPHA)
@@ -217,7 +218,9 @@ class Screens:
 
     def _text(self, text: str, font: pygame.font.Font, colour: Any, **anchor: Any) -> None:
         rendered = font.render(text, True, colour)
-        self.surface.blit(rendered, rendered.get_rect(**anchor))
+        box = rendered.get_rect(**anchor)
+        self.surface.blit(rendered, box)
+        self.boxes.append(box)
 
     def _at(self, x: float, y: float) -> tuple[int, int]:
         """A point at fractions of the surface's width and height."""

@@ -419,3 +419,62 @@ def test_a_game_in_a_real_window(x_display, tmp_path):
     picture = pygame.image.load(str(shot))
     assert picture.get_size() == (800, 480)
     assert len({tuple(picture.get_at((x, 300))) for x in range(0, 800, 4)}) > 2  # the fight
+
+
+HUD = pygame.Rect(0, 0, 10_000, 52)  # the viewer's health bars, names and timer
+
+
+def shoot_screens(config, seat, folder):
+    """Play a best of 3 against rush (the person idle, so rush wins it) and save each screen to
+    `folder`; returns each screen's text and panel boxes."""
+    env = vooga_env.parallel_env(config=config, backend="engine", stocks=3, max_cycles=400)
+    game = Game(env, make_policy("rush"), PlaySettings(seat=seat, rounds=3))
+    game.last_saved = "runs/play/20261201-213600-rush-m1-r1.json"
+    surface = pygame.Surface((int(env.config.arena.width), int(env.config.arena.height)))
+    screens = Screens(game, surface)
+    boxes = {}
+
+    def shoot(name):
+        screens.draw()
+        pygame.image.save(surface, str(Path(folder) / f"{name}.png"))
+        boxes[name] = list(screens.boxes)
+
+    def until(done, events=()):
+        game.frame(events, FRAME_MS)
+        while not done(game):
+            game.frame([], FRAME_MS)
+
+    until(lambda g: g.phase_ms >= 1000)
+    shoot("countdown")
+    until(phase(Phase.FIGHT))
+    shoot("fight-banner")
+    until(lambda g: g.phase_ms >= 1000)
+    shoot("fight-help")
+    game.frame([down(K.K_DOWN)], FRAME_MS)
+    game.frame([up(K.K_DOWN)], FRAME_MS)
+    shoot("fight-hint")
+    game.frame([down(K.K_p)], FRAME_MS)
+    shoot("paused")
+    until(phase(Phase.ROUND_OVER, Phase.MATCH_OVER), [down(K.K_p)])
+    shoot("round-over-lockout")
+    until(accepting)
+    shoot("round-over")
+    while game.phase is not Phase.MATCH_OVER:
+        until(phase(Phase.ROUND_OVER, Phase.MATCH_OVER), [down(K.K_RETURN)])
+    until(accepting)
+    shoot("match-over")
+    return boxes
+
+
+@pytest.mark.parametrize("config, seat", [("default", 0), ("small", 1), ("platforms", 0)])
+def test_every_screen_draws_inside_and_without_overlaps(headless, tmp_path, config, seat):
+    boxes = shoot_screens(config, seat, tmp_path)
+    size = pygame.image.load(str(tmp_path / "countdown.png")).get_rect()
+    for name, drawn in boxes.items():
+        assert drawn, name
+        for index, box in enumerate(drawn):
+            assert size.contains(box), (name, box)
+            assert not box.colliderect(HUD), (name, box)
+            assert box.collidelist(drawn[index + 1 :]) == -1, (name, box, drawn)
+    pictures = {name: (tmp_path / f"{name}.png").read_bytes() for name in boxes}
+    assert len(set(pictures.values())) == len(pictures)  # every screen looks different
