@@ -4,11 +4,14 @@
     python -m agents.play runs/ppo.zip --seat 1 --rounds 3 --speed 0.75 --config platforms
 
 Each round opens with a countdown, and ends on a result screen (Enter or Space: next round); a
-match is best of --rounds rounds, --stocks stocks each (default 3). On the match's result screen
-R or Enter plays a new match. Every round is saved as a replay (the `vooga_env.replay` format;
-watch it with `python -m agents.match --replay FILE --render`) in --replay-dir, by default
-runs/play/ under the current folder, named <date>-<time>-<opponent>-m<match>-r<round>.json; each
-path is printed as it is written. --no-replay saves nothing.
+match is best of --rounds rounds, of --stocks stocks each (default 3). The round's clock gives
+each stock the config's time (`default`: 900 steps, 36 s at speed 1, so 108 s for 3 stocks)
+unless --max-cycles sets it. On the match's result screen R or Enter plays a new match.
+
+Every round is saved as a replay (the `vooga_env.replay` format; watch it again with
+`python -m agents.match --replay FILE --render`) in --replay-dir, by default runs/play/ under
+the current folder, named <date>-<time>-<opponent>-m<match>-r<round>.json; each path is printed
+as it is written. --no-replay saves nothing.
 
 It needs a display. Without one it stops (exit status 2) and says how to get one; a test or a
 screenshot script can set SDL_VIDEODRIVER=dummy to run it without a window on purpose.
@@ -18,6 +21,7 @@ screenshot script can set SDL_VIDEODRIVER=dummy to run it without a window on pu
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import re
 import sys
@@ -28,6 +32,7 @@ from typing import Any
 
 from vooga_env.config import ConfigError, FightConfig, load_config
 from vooga_env.match import EpisodeRecord
+from vooga_env.policies import SCRIPTED
 from vooga_env.replay import Replay
 
 from . import common
@@ -139,19 +144,14 @@ def main(
     """The command; `events` and `clock` replace the window's (tests drive it with scripts)."""
     parser = build_parser()
     args = parser.parse_args(argv)
-    overrides: dict[str, Any] = {"stocks": args.stocks}
-    if args.max_cycles is not None:
-        overrides["max_cycles"] = args.max_cycles
-    try:
-        config = load_config(args.config, **overrides)
-    except ConfigError as error:
-        parser.error(str(error))
+    config = play_config(parser, args)
+    os.environ.setdefault("SDL_AUDIODRIVER", "dummy")  # no sound: no audio device needed
     problem = display_problem()
     if problem is not None:
         print(f"{parser.prog}: {problem}", file=sys.stderr)
         return 2
     opponent = common.policy(parser, args.opponent)
-    label = Path(args.opponent).name if args.opponent.endswith(".zip") else opponent.name
+    label = opponent.name if args.opponent in SCRIPTED else Path(args.opponent).name
     import vooga_env
 
     env = vooga_env.parallel_env(config=config, backend="engine")
@@ -178,6 +178,19 @@ def main(
         pygame.display.quit()
     _summary(game, saver)
     return 0
+
+
+def play_config(parser: argparse.ArgumentParser, args: argparse.Namespace) -> FightConfig:
+    """The stage with --stocks stocks; its clock keeps the config's time per stock (900 steps a
+    stock on `default`) unless --max-cycles sets it. A bad name or value is a usage error."""
+    try:
+        base = load_config(args.config)
+        max_cycles = args.max_cycles
+        if max_cycles is None:
+            max_cycles = math.ceil(base.max_cycles * args.stocks / base.stocks)
+        return load_config(base, stocks=args.stocks, max_cycles=max_cycles)
+    except ConfigError as error:
+        parser.error(str(error))
 
 
 def _summary(game: Game, saver: ReplaySaver | None) -> None:

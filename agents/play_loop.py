@@ -80,8 +80,9 @@ def check_speed(speed: Any) -> float:
 
 @dataclass
 class RoundResult:
-    """One finished round, from the person's side: `outcome` "win", "loss" or "draw"; `how` the
-    last step's event ("ring-out", "KO") or "time up"."""
+    """One finished round, from the person's side: `outcome` "win", "loss" or "draw"; `how` it
+    ended: "ring-out" or "KO" (the loser's last stock), or "time up, more stocks" / "time up,
+    more health" (the winner's lead) / "time up, level"."""
 
     number: int
     outcome: str
@@ -243,13 +244,19 @@ class Game:
             self._end_round()
 
     def _end_round(self) -> None:
-        self.record.close(self.env)
-        outcome = self.record.outcome(self.settings.seat)
+        record = self.record
+        record.close(self.env)
+        outcome = record.outcome(self.settings.seat)
         loser = {"win": 1 - self.settings.seat, "loss": self.settings.seat}.get(outcome)
-        how = "time up"
-        if loser is not None:
+        if loser is None:
+            how = "time up, level"
+        elif record.stocks[loser] == 0:
             info = self._last_infos[f"fighter_{loser}"]
-            how = "ring-out" if info["rung_out"] else ("KO" if info["knocked_out"] else how)
+            how = "ring-out" if info["rung_out"] else "KO"
+        else:
+            how = "time up, " + (
+                "more stocks" if record.stocks[0] != record.stocks[1] else "more health"
+            )
         match = self.match
         match.rounds.append(RoundResult(len(match.rounds) + 1, outcome, how, self.record.steps))
         self._report()

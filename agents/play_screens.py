@@ -145,8 +145,8 @@ class Screens:
         return f"{what[0].upper()}{what[1:]}: a draw", TEXT
 
     def _how(self, outcome: str, how: str) -> str:
-        if how == "time up":
-            return "time up: more stocks, then more health, wins"
+        if how not in ("ring-out", "KO"):
+            return how
         loser = {"win": self.game.opponent_name, "loss": "you"}[outcome]
         return f"{loser}: {'rung out' if how == 'ring-out' else 'knocked out'}"
 

@@ -122,8 +122,10 @@ def headless(monkeypatch):
     pygame.display.quit()
 
 
-def new_game(rounds=3, opponent=walks_off, **settings):
-    env = vooga_env.parallel_env(config="default", backend="engine", stocks=1)
+def new_game(rounds=3, opponent=walks_off, max_cycles=900, **settings):
+    env = vooga_env.parallel_env(
+        config="default", backend="engine", stocks=1, max_cycles=max_cycles
+    )
     reported = []
 
     def on_round_end(record, game):
@@ -222,6 +224,17 @@ def test_match_over_then_play_again(headless):
     run(game, lambda: None, keys, FakeClock(), max_frames=5000)
     assert [m.outcome for m in game.matches] == ["win", "draw"]  # match 2 had no round
     assert len(game.matches[1].rounds) == 0 and len(reported) == 1
+
+
+def test_time_up_level_is_a_drawn_round_and_match():
+    game, reported = new_game(rounds=1, opponent="idle", max_cycles=5, countdown_ms=0)
+    for _ in range(6):
+        game.frame([], FRAME_MS)
+    assert game.phase is Phase.MATCH_OVER and game.match.outcome == "draw"
+    assert [(r.outcome, r.how, r.steps) for r in game.match.rounds] == [
+        ("draw", "time up, level", 5)
+    ]
+    assert reported[0][0].winner == "draw"
 
 
 def test_quitting_mid_round_reports_the_game_so_far():
@@ -329,6 +342,21 @@ def test_cli_no_replay(headless, tmp_path, monkeypatch, capsys):
 
 
 @pytest.mark.parametrize(
+    "argv, stocks, max_cycles",
+    [
+        (["rush"], 3, 2700),  # default.toml: 1 stock in 900 steps; the same time per stock
+        (["rush", "--stocks", "1"], 1, 900),
+        (["rush", "--stocks", "2", "--max-cycles", "50"], 2, 50),
+        (["rush", "--config", "small", "--stocks", "5"], 5, 4500),
+    ],
+)
+def test_the_clock_keeps_the_time_per_stock(argv, stocks, max_cycles):
+    parser = play.build_parser()
+    config = play.play_config(parser, parser.parse_args(argv))
+    assert (config.stocks, config.max_cycles) == (stocks, max_cycles)
+
+
+@pytest.mark.parametrize(
     "argv, message",
     [
         (["ninja"], "unknown policy 'ninja'"),
@@ -337,6 +365,7 @@ def test_cli_no_replay(headless, tmp_path, monkeypatch, capsys):
         (["rush", "--stocks", "0"], "must be >= 1, got 0"),
         (["rush", "--rounds", "0"], "must be >= 1, got 0"),
         (["rush", "--config", "moon"], "moon"),
+        (["rush", "--max-cycles", "0"], "max_cycles"),
         (["rush", "--no-replay", "--replay-dir", "x"], "not allowed with argument"),
     ],
 )
