@@ -33,6 +33,7 @@ from typing import Any
 from vooga_env.config import ConfigError, FightConfig, load_config
 from vooga_env.match import EpisodeRecord
 from vooga_env.policies import SCRIPTED
+from vooga_env.render import HEADLESS_DRIVERS
 from vooga_env.replay import Replay
 
 from . import common
@@ -63,7 +64,7 @@ def display_problem() -> str | None:
     except pygame.error as error:
         return NO_DISPLAY.format(why=f"SDL: {error}")
     driver = pygame.display.get_driver()
-    if driver in ("offscreen", "dummy") and not os.environ.get("SDL_VIDEODRIVER"):
+    if driver in HEADLESS_DRIVERS and not os.environ.get("SDL_VIDEODRIVER"):
         pygame.display.quit()
         why = "DISPLAY and WAYLAND_DISPLAY are not set" if _no_display_vars() else "SDL found none"
         return NO_DISPLAY.format(why=f"{why}; SDL fell back to its {driver!r} driver")
@@ -94,7 +95,7 @@ class ReplaySaver:
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
-        prog="python -m agents.play",
+        prog="vooga-play",
         description="Fight a policy with the keyboard, in a window.",
         epilog=__doc__.split("\n\n", 1)[1] + HELP_TEXT,
         formatter_class=argparse.RawDescriptionHelpFormatter,

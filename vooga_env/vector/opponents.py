@@ -8,6 +8,8 @@ per-fighter streams of the scalar policies, so a game against it is not the same
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from vooga_env.actions import Action
@@ -127,6 +129,20 @@ def scripted_actions(name: str, observations: np.ndarray, draws: np.ndarray) -> 
         return chosen.astype(np.int64)
     needed, recover = _recover(observations)
     return np.where(needed, recover, chosen).astype(np.int64)
+
+
+def batch_opponent(opponent: Any, seed: int | None = None) -> Any:
+    """A scripted fighter's name as a `VectorOpponent`, or an object that already has
+    `act(observations (n, 41)) -> actions (n,)`; anything else is refused, naming it."""
+    if isinstance(opponent, str):
+        return VectorOpponent(opponent, seed)
+    if callable(getattr(opponent, "act", None)):
+        return opponent
+    raise TypeError(
+        "opponent must be a scripted fighter's name "
+        f"({', '.join(NAMES)}) or an object with act(observations) -> actions for a batch, "
+        f"got {opponent!r}"
+    )
 
 
 class VectorOpponent:
