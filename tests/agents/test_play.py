@@ -117,6 +117,7 @@ def walks_off(obs):
 @pytest.fixture
 def headless(monkeypatch):
     monkeypatch.setenv("SDL_VIDEODRIVER", "dummy")
+    monkeypatch.setenv("SDL_AUDIODRIVER", "dummy")  # what main sets, restored after the test
     pygame.display.init()
     yield
     pygame.display.quit()
@@ -381,6 +382,7 @@ def test_no_display_is_an_error_not_a_blind_game(monkeypatch, tmp_path, capsys):
     pygame.display.quit()
     for name in ("SDL_VIDEODRIVER", "DISPLAY", "WAYLAND_DISPLAY"):
         monkeypatch.delenv(name, raising=False)
+    monkeypatch.setenv("SDL_AUDIODRIVER", "dummy")
     assert play.main(["rush", "--replay-dir", str(tmp_path)]) == 2
     err = capsys.readouterr().err
     assert "no display" in err and "xvfb-run" in err and "DISPLAY" in err
