@@ -39,6 +39,7 @@ from vooga_env.replay import Replay
 from . import common
 from .play_keys import HELP_TEXT
 from .play_loop import SPEED_RANGE, Clock, Game, PlaySettings, check_speed, run
+from .play_screens import Screens
 
 DEFAULT_REPLAY_DIR = Path("runs/play")
 PLAY_STOCKS = 3
@@ -160,23 +161,13 @@ def main(
     settings = PlaySettings(args.seat, args.rounds, args.speed, args.seed)
     game = Game(env, opponent, settings, on_round_end=saver, opponent_name=label)
     print(HELP_TEXT, flush=True)
-    import pygame
-
     try:
-        from .play_screens import Screens
-
-        window = pygame.display.set_mode(_size(env.config))
-        pygame.display.set_caption(f"vooga_env: you vs {label}")
-        screens = Screens(game, window)
-
-        def draw() -> None:
-            screens.draw()
-            pygame.display.flip()
-
-        run(game, draw, events, clock)
+        run(game, _window(game), events, clock)
+    except KeyboardInterrupt:  # Ctrl-C in the terminal: stop as Esc does, keeping the round
+        game.quit()
     finally:
         env.close()
-        pygame.display.quit()
+        _close_window()
     _summary(game, saver)
     return 0
 
@@ -206,8 +197,26 @@ def _summary(game: Game, saver: ReplaySaver | None) -> None:
         print(f"{len(saver.saved)} replay(s) in {saver.folder}/")
 
 
-def _size(config: FightConfig) -> tuple[int, int]:
-    return int(config.arena.width), int(config.arena.height)
+def _window(game: Game) -> Callable[[], None]:
+    """Open the game's window (the stage's size); returns what draws a frame in it."""
+    import pygame
+
+    arena = game.env.config.arena
+    window = pygame.display.set_mode((int(arena.width), int(arena.height)))
+    pygame.display.set_caption(f"vooga_env: you vs {game.opponent_name}")
+    screens = Screens(game, window)
+
+    def draw() -> None:
+        screens.draw()
+        pygame.display.flip()
+
+    return draw
+
+
+def _close_window() -> None:
+    import pygame
+
+    pygame.display.quit()
 
 
 def _speed(text: str) -> float:

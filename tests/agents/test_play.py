@@ -333,6 +333,21 @@ def test_cli_plays_and_saves_every_round(headless, tmp_path, capsys):
     play_back(Replay.load(path))
 
 
+def test_cli_ctrl_c_keeps_the_round_so_far(headless, tmp_path, capsys):
+    frames = iter(range(1_000_000))
+
+    def interrupted():
+        if next(frames) == round(3000 / FRAME_MS) + 10:
+            raise KeyboardInterrupt
+        return []
+
+    argv = ["rush", "--replay-dir", str(tmp_path)]
+    assert play.main(argv, events=interrupted, clock=FakeClock()) == 0
+    (path,) = tmp_path.glob("*-rush-m1-r1.json")
+    assert len(Replay.load(path).actions) == 10
+    assert f"replay: {path}" in capsys.readouterr().out
+
+
 def test_cli_no_replay(headless, tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     script = {80: [down(K.K_ESCAPE)]}
