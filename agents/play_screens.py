@@ -145,10 +145,17 @@ class Screens:
         return f"{what[0].upper()}{what[1:]}: a draw", TEXT
 
     def _how(self, outcome: str, how: str) -> str:
-        if how not in ("ring-out", "KO"):
-            return how
-        loser = {"win": self.game.opponent_name, "loss": "you"}[outcome]
-        return f"{loser}: {'rung out' if how == 'ring-out' else 'knocked out'}"
+        """How the round ended, in a sentence: who was rung out, or who led when time ran out."""
+        winner, loser = {"win": ("you", self.game.opponent_name)}.get(
+            outcome, (self.game.opponent_name, "you")
+        )
+        if how == "ring-out":
+            return f"{loser}: rung out"
+        if how == "KO":
+            return f"{loser}: knocked out"
+        if outcome == "draw":
+            return "time up: level on stocks and health"
+        return f"time up: {winner} had {how.removeprefix('time up, ')}"
 
     def _score(self) -> pygame.Surface:
         match = self.game.match

@@ -238,6 +238,19 @@ def test_time_up_level_is_a_drawn_round_and_match():
     assert reported[0][0].winner == "draw"
 
 
+def test_time_up_with_more_health_wins_the_round():
+    """The person walks up to an idle opponent and kicks until the clock runs out."""
+    game, _ = new_game(rounds=3, opponent="idle", max_cycles=80, countdown_ms=0)
+    keys = ScriptedKeys(
+        game,
+        [(after_steps(0), [down(K.K_RIGHT)]), (after_steps(25), [up(K.K_RIGHT), down(K.K_k)])],
+    )
+    run(game, lambda: None, keys, FakeClock(), max_frames=200)
+    (result,) = game.match.rounds
+    assert (result.outcome, result.how, result.steps) == ("win", "time up, more health", 80)
+    assert game.phase is Phase.ROUND_OVER and game.record.health[1] < game.record.health[0]
+
+
 def test_quitting_mid_round_reports_the_game_so_far():
     game, reported = new_game(rounds=1, opponent="idle")
     keys = ScriptedKeys(
