@@ -86,3 +86,30 @@ class FrozenPolicy(Policy):
             return int(np.argmax(logits))
         odds = np.exp(logits - logits.max())
         return int(self.rng.choice(len(odds), p=odds / odds.sum()))
+
+    def act_batch(self, observations: np.ndarray) -> np.ndarray:
+        """Actions (n,) for observations (n, 41): the argmax, or a sample drawn by Gumbel-max
+        (the same distribution as `act`, one draw per row, not the same numbers)."""
+        logits = self.logits(observations)
+        if not self.deterministic:
+            logits = logits + self.rng.gumbel(size=logits.shape)
+        return np.argmax(logits, axis=1).astype(np.int64)
+
+
+class BatchPolicy:
+    """A FrozenPolicy as a batch opponent (`act(observations (n, 41)) -> actions (n,)`), the
+    shape `FightVecEnv(opponent=...)` takes: one network call for the whole batch."""
+
+    def __init__(self, policy: FrozenPolicy) -> None:
+        self.policy = policy
+        self.name = policy.name
+
+    def reset(self, seed: int | None = None) -> None:
+        self.policy.reset(seed)
+
+    def act(self, observations: np.ndarray) -> np.ndarray:
+        return self.policy.act_batch(observations)
+
+    def __repr__(self) -> str:
+        mode = "argmax" if self.policy.deterministic else "sampled"
+        return f"BatchPolicy({self.name!r}, {mode})"
