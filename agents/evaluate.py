@@ -19,7 +19,7 @@ from vooga_env.elo import Tournament, round_robin
 from vooga_env.match import wilson_interval
 from vooga_env.policies import SCRIPTED
 
-from . import common
+from . import common, style_report
 from .tournament import format_tournament
 
 
@@ -38,6 +38,7 @@ def build_parser() -> argparse.ArgumentParser:
         help=f"opponents (default all scripted: {' '.join(SCRIPTED)})",
     )
     common.add_fight_options(parser, episodes=50)
+    style_report.add_style_options(parser)
     parser.add_argument("--out", metavar="FILE", help="also write the JSON report here")
     common.add_output_options(parser)
     return parser
@@ -53,21 +54,26 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.error("give at least one opponent")
     label = candidate.name if candidate.name not in opponents else f"{candidate.name} (evaluated)"
     entrants = {label: candidate, **opponents}
-    pairings = len(entrants) * (len(entrants) - 1) // 2
+    versions = style_report.plays(candidate, args)
+    pairings = len(entrants) * (len(entrants) - 1) // 2 + len(opponents) * len(versions)
     advance, close = common.progress_bar(
         pairings * args.episodes, not args.no_progress, f"evaluating {label}"
     )
     try:
         tournament = round_robin(entrants, args.episodes, args.seed, config, progress=advance)
+        style = style_report.style_rows(
+            versions, opponents, args.episodes, args.seed, config, progress=advance
+        )
     finally:
         close()
-    report = evaluation(tournament, label, args.model)
+    report = {**evaluation(tournament, label, args.model), "style": style}
     if args.out:
         common.write_json(args.out, report)
     if args.json:
         common.print_json(report)
     else:
         print(format_report(report, tournament))
+        print("\n" + style_report.format_style(style))
         if args.out:
             print(f"written to {args.out}")
     return 0

@@ -48,7 +48,9 @@ class EpisodeRecord:
     `positions` (top-left x, y in px) are the final state. `winner` is "fighter_0", "fighter_1" or
     "draw", or None when the episode was stopped before its end. `actions[t]` is the pair of
     actions of step t; `observations[t]` the (2, 41) observations before step t (the last one:
-    after the last step).
+    after the last step). `ended_by` is how the game ended: "ring_out" or "ko" (the last stock
+    lost by falling / by health 0) or "time". `step_hits[t]`, kept with the observations, is
+    each seat's hits landed (not blocked) on step t.
     """
 
     seed: int
@@ -66,6 +68,8 @@ class EpisodeRecord:
     actions: list[tuple[int, int]] | None = None
     observations: list[np.ndarray] | None = None
     frames: list[np.ndarray] | None = None
+    ended_by: str | None = None
+    step_hits: list[tuple[int, int]] | None = None
 
     @property
     def finished(self) -> bool:
@@ -92,6 +96,10 @@ class EpisodeRecord:
             self.hits_landed[seat] += int(info["hits_landed"])
             if "winner" in info:
                 self.winner = info["winner"]
+        if self.step_hits is not None:
+            self.step_hits.append(tuple(int(infos[f"fighter_{s}"]["hits_landed"]) for s in (0, 1)))
+        if self.winner is not None and self.ended_by is None:
+            self.ended_by = _ending(infos)
 
     def close(self, env: Any) -> None:
         """Read the final health, stocks and positions off the env."""
@@ -99,6 +107,16 @@ class EpisodeRecord:
             self.health[seat] = float(status["health"])
             self.stocks[seat] = int(status["stocks"])
             self.positions[seat] = [float(status["x"]), float(status["y"])]
+
+
+def _ending(infos: dict[str, dict[str, Any]]) -> str:
+    """How a game's last step ended it: a stock lost by a ring-out or a KO, else the clock."""
+    last = [infos[f"fighter_{seat}"] for seat in (0, 1)]
+    if any(info["rung_out"] for info in last):
+        return "ring_out"
+    if any(info["knocked_out"] for info in last):
+        return "ko"
+    return "time"
 
 
 def capture_frame(env: Any) -> np.ndarray:
@@ -130,6 +148,7 @@ def play_episode(
     record = EpisodeRecord(seed, names, (policy_seeds[0], policy_seeds[1]))
     record.actions = [] if record_actions else None
     record.observations = [] if record_observations else None
+    record.step_hits = [] if record_observations else None
     record.frames = [] if record_frames else None
     for policy, policy_seed in zip(policies, policy_seeds, strict=True):
         policy.reset(policy_seed)
@@ -269,6 +288,7 @@ def run_match(
     render_mode: str | None = None,
     names: tuple[str, str] | None = None,
     record_actions: bool = False,
+    record_observations: bool = False,
     record_frames: int = 0,
     progress: Callable[[EpisodeRecord], None] | None = None,
     step_hook: Callable[[EpisodeRecord], None] | None = None,
@@ -278,7 +298,8 @@ def run_match(
 
     `policy_a`, `policy_b`: anything `make_policy` takes (a scripted name, a saved model's path, a
     Policy, a callable, a predict-er). `render_mode="human"` shows every game in a window.
-    `record_actions` keeps every game's actions; `record_frames=n` keeps the pictures of the first
+    `record_actions` keeps every game's actions (`record_observations` its observations and
+    hits, for `vooga_env.style`); `record_frames=n` keeps the pictures of the first
     n games. `progress(record)` runs after each game; `step_hook(record)` after each step.
     Config overrides (`max_cycles=200`, ...) go to the env.
     """
@@ -306,6 +327,7 @@ def run_match(
                 env_seed,
                 seat_seeds,
                 record_actions=record_actions,
+                record_observations=record_observations,
                 record_frames=game < record_frames,
                 step_hook=step_hook,
             )
