@@ -189,8 +189,148 @@ class EdgeGuard(Scripted):
         return Action.LEFT if own_offset > 0 else Action.RIGHT
 
 
+def _behind(observation: np.ndarray, gap: float) -> float:
+    """Own distance to the stage edge behind (away from the opponent), in arena widths."""
+    return float(observation[_I["stage_left"]] if gap > 0 else observation[_I["stage_right"]])
+
+
+def _attacking(observation: np.ndarray) -> bool:
+    return bool(observation[_I["opponent_punching"]] or observation[_I["opponent_kicking"]])
+
+
+def _threatened(observation: np.ndarray) -> bool:
+    """Could the opponent's punch or kick, started now, touch this fighter?"""
+    return _reach(observation, "opponent", "punch") or _reach(observation, "opponent", "kick")
+
+
+class Drawn(Scripted):
+    """A scripted fighter that draws one number a step and decides with `choose(obs, draw)`
+    (a pure function, so the batched version and the mixed-up player can reuse the choice)."""
+
+    def act(self, observation: np.ndarray) -> int:
+        recover = _recover(observation)
+        draw = self.rng.random()
+        return int(recover if recover is not None else self.choose(observation, draw))
+
+    @staticmethod
+    def choose(observation: np.ndarray, draw: float) -> int:
+        raise NotImplementedError
+
+
+class Aerial(Drawn):
+    """Hops in from mid range (unless that would carry it off the stage beyond the opponent)
+    and strikes from the air: punches close, kicks a little further."""
+
+    name = "aerial"
+
+    @staticmethod
+    def choose(observation: np.ndarray, draw: float) -> int:
+        gap = _gap(observation)
+        if _reach(observation, "self", "punch"):
+            return Action.PUNCH
+        if _reach(observation, "self", "kick"):
+            return Action.KICK
+        grounded = observation[_I["self_on_ground"]] > 0
+        room = _behind(observation, -gap) - abs(gap) / 2  # beyond the opponent, arena widths
+        if grounded and abs(gap) < 0.6 and room > 0.15 and draw < 0.5:
+            return Action.JUMP_RIGHT if gap > 0 else Action.JUMP_LEFT
+        return _toward(gap)
+
+
+class Punisher(Drawn):
+    """Baits at the edge of the opponent's reach, blocks or backs off from an attack, and
+    strikes while the opponent recovers from one; jumps over when cornered."""
+
+    name = "punisher"
+
+    @staticmethod
+    def choose(observation: np.ndarray, draw: float) -> int:
+        gap = _gap(observation)
+        attacking = _attacking(observation)
+        late = observation[_I["opponent_move_progress"]] >= 0.5
+        if observation[_I["opponent_hitstun"]] > 0 or (attacking and late):
+            if _reach(observation, "self", "punch"):
+                return Action.PUNCH
+            return Action.KICK if _reach(observation, "self", "kick") else _toward(gap)
+        if not attacking and _reach(observation, "self", "kick") and draw < 0.3:
+            return Action.KICK
+        if _threatened(observation):
+            if attacking:
+                return Action.BLOCK
+            if _behind(observation, gap) > 0.1:
+                return _away(gap)
+            return Action.JUMP_RIGHT if gap > 0 else Action.JUMP_LEFT
+        return _toward(gap) if draw < 0.6 else Action.IDLE
+
+
+class Spacer(Drawn):
+    """Keeps its distance low: ducks punches, kicks from a crouch (low), steps back when close."""
+
+    name = "spacer"
+
+    @staticmethod
+    def choose(observation: np.ndarray, draw: float) -> int:
+        gap = _gap(observation)
+        punch_coming = observation[_I["opponent_punching"]] > 0
+        if punch_coming and _reach(observation, "opponent", "punch"):
+            return Action.DOWN
+        if _reach(observation, "self", "punch") and _behind(observation, gap) > 0.08:
+            return _away(gap)
+        if _reach(observation, "self", "kick"):
+            crouched = observation[_I["self_crouching"]] > 0
+            return Action.KICK if crouched or draw < 0.4 else Action.DOWN
+        return _toward(gap)
+
+
+class EdgeGrappler(Drawn):
+    """Pushes the opponent towards the edge behind it with punches, and kicks it off from there;
+    blocks a punch, and jumps over when it is the one cornered."""
+
+    name = "edge_grappler"
+
+    @staticmethod
+    def choose(observation: np.ndarray, draw: float) -> int:
+        gap = _gap(observation)
+        ahead = observation[_I["stage_right"]] if gap > 0 else observation[_I["stage_left"]]
+        cornered = ahead - abs(gap) / 2 < 0.15  # the opponent's room behind it, arena widths
+        if _reach(observation, "self", "punch"):
+            return Action.KICK if cornered else Action.PUNCH
+        if _reach(observation, "self", "kick") and (cornered or draw < 0.2):
+            return Action.KICK
+        if _attacking(observation) and _reach(observation, "opponent", "punch"):
+            return Action.BLOCK
+        if _behind(observation, gap) < 0.1 and draw < 0.5:
+            return Action.JUMP_RIGHT if gap > 0 else Action.JUMP_LEFT
+        return _toward(gap)
+
+
+class MixUp(Drawn):
+    """Changes style every twelfth of the clock: aerial, punisher, edge grappler in turn."""
+
+    name = "mixup"
+    STYLES = (Aerial, Punisher, EdgeGrappler)
+
+    @staticmethod
+    def choose(observation: np.ndarray, draw: float) -> int:
+        phase = int(float(observation[_I["time_left"]]) * 12.0) % len(MixUp.STYLES)
+        return MixUp.STYLES[phase].choose(observation, draw)
+
+
 SCRIPTED: dict[str, type[Scripted]] = {
-    cls.name: cls for cls in (Idle, RandomFighter, Rush, Turtle, Zoner, EdgeGuard)
+    cls.name: cls
+    for cls in (
+        Idle,
+        RandomFighter,
+        Rush,
+        Turtle,
+        Zoner,
+        EdgeGuard,
+        Aerial,
+        Punisher,
+        Spacer,
+        EdgeGrappler,
+        MixUp,
+    )
 }
 
 

@@ -90,11 +90,22 @@ def test_ppo_learns_through_it_without_nans(opponent, one_torch_thread):
     assert len(model.ep_info_buffer) > 0  # episodes ended and were counted
 
 
-def observations_from_games(count: int = 600) -> np.ndarray:
-    """Real observations, from both seats of scripted games with random actions mixed in."""
+def observations_from_games(count: int = 1000) -> np.ndarray:
+    """Real observations, from both seats of scripted games with random actions mixed in: half
+    from rush against zoner, half from an aerial fighter against an edge grappler (in the air,
+    cornered)."""
+    return np.concatenate(
+        [
+            scripted_game_observations(("rush", "zoner"), count // 2),
+            scripted_game_observations(("aerial", "edge_grappler"), count - count // 2),
+        ]
+    )
+
+
+def scripted_game_observations(names: tuple[str, str], count: int) -> np.ndarray:
     env = vooga_env.parallel_env(config="small", max_cycles=100)
     rng = np.random.default_rng(1)
-    policies = [make_policy("rush", 1), make_policy("zoner", 2)]
+    policies = [make_policy(names[0], 1), make_policy(names[1], 2)]
     obs, _ = env.reset(seed=0)
     rows = []
     while len(rows) < count:

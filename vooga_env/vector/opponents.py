@@ -99,6 +99,86 @@ def _edge_guard(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
     return np.where(_reach(observations, "kick"), close, far)
 
 
+def _away(gap: np.ndarray) -> np.ndarray:
+    return np.where(gap > 0, Action.LEFT, Action.RIGHT)
+
+
+def _jump_toward(gap: np.ndarray) -> np.ndarray:
+    return np.where(gap > 0, Action.JUMP_RIGHT, Action.JUMP_LEFT)
+
+
+def _behind(observations: np.ndarray, gap: np.ndarray) -> np.ndarray:
+    left, right = _column(observations, "stage_left"), _column(observations, "stage_right")
+    return np.where(gap > 0, left, right)
+
+
+def _opponent_reach(observations: np.ndarray, move: str) -> np.ndarray:
+    return _column(observations, f"opponent_{move}_reach") != 0
+
+
+def _aerial(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
+    gap = _column(observations, "opponent_x")
+    grounded = _column(observations, "self_on_ground") > 0
+    room = _behind(observations, -gap) - np.abs(gap) / 2
+    hop = grounded & (np.abs(gap) < 0.6) & (room > 0.15) & (draws < 0.5)
+    far = np.where(hop, _jump_toward(gap), _toward(gap))
+    return np.where(
+        _reach(observations, "punch"),
+        Action.PUNCH,
+        np.where(_reach(observations, "kick"), Action.KICK, far),
+    )
+
+
+def _punisher(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
+    gap = _column(observations, "opponent_x")
+    attacking = _attacking(observations)
+    late = _column(observations, "opponent_move_progress") >= 0.5
+    punish = (_column(observations, "opponent_hitstun") > 0) | (attacking & late)
+    kick_or_walk = np.where(_reach(observations, "kick"), Action.KICK, _toward(gap))
+    strike = np.where(_reach(observations, "punch"), Action.PUNCH, kick_or_walk)
+    poke = ~attacking & _reach(observations, "kick") & (draws < 0.3)
+    threatened = _opponent_reach(observations, "punch") | _opponent_reach(observations, "kick")
+    evade = np.where(_behind(observations, gap) > 0.1, _away(gap), _jump_toward(gap))
+    defend = np.where(attacking, Action.BLOCK, evade)
+    bait = np.where(draws < 0.6, _toward(gap), Action.IDLE)
+    return np.where(punish, strike, np.where(poke, Action.KICK, np.where(threatened, defend, bait)))
+
+
+def _spacer(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
+    gap = _column(observations, "opponent_x")
+    duck = (_column(observations, "opponent_punching") > 0) & _opponent_reach(observations, "punch")
+    back = _reach(observations, "punch") & (_behind(observations, gap) > 0.08)
+    crouched = _column(observations, "self_crouching") > 0
+    kick = np.where(crouched | (draws < 0.4), Action.KICK, Action.DOWN)
+    rest = np.where(back, _away(gap), np.where(_reach(observations, "kick"), kick, _toward(gap)))
+    return np.where(duck, Action.DOWN, rest)
+
+
+def _edge_grappler(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
+    gap = _column(observations, "opponent_x")
+    ahead = np.where(
+        gap > 0, _column(observations, "stage_right"), _column(observations, "stage_left")
+    )
+    cornered = ahead - np.abs(gap) / 2 < 0.15
+    close = np.where(cornered, Action.KICK, Action.PUNCH)
+    kick = _reach(observations, "kick") & (cornered | (draws < 0.2))
+    block = _attacking(observations) & _opponent_reach(observations, "punch")
+    escape = (_behind(observations, gap) < 0.1) & (draws < 0.5)
+    far = np.where(block, Action.BLOCK, np.where(escape, _jump_toward(gap), _toward(gap)))
+    return np.where(_reach(observations, "punch"), close, np.where(kick, Action.KICK, far))
+
+
+_MIXUP_STYLES = (_aerial, _punisher, _edge_grappler)
+
+
+def _mixup(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
+    """policies.MixUp: the style of the clock's twelfth, row by row."""
+    time_left = _column(observations, "time_left").astype(np.float64)
+    phase = (time_left * 12.0).astype(np.int64) % len(_MIXUP_STYLES)
+    choices = np.stack([style(observations, draws) for style in _MIXUP_STYLES])
+    return choices[phase, np.arange(len(observations))]
+
+
 def _idle(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
     return np.full(len(observations), Action.IDLE)
 
@@ -109,6 +189,11 @@ _DECIDE = {
     "turtle": _turtle,
     "zoner": _zoner,
     "edge_guard": _edge_guard,
+    "aerial": _aerial,
+    "punisher": _punisher,
+    "spacer": _spacer,
+    "edge_grappler": _edge_grappler,
+    "mixup": _mixup,
 }
 NAMES = (*_DECIDE, "random")
 assert set(NAMES) == set(SCRIPTED), "a scripted fighter without a batched version"

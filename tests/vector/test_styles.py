@@ -1,0 +1,44 @@
+"""The scripted styles (aerial, punisher, spacer, edge_grappler, mixup): competent, registered,
+and quick to play on the batched engine (`vooga_env.vector.matches.batch_match`)."""
+
+from __future__ import annotations
+
+import pytest
+
+from vooga_env.match import run_match
+from vooga_env.policies import SCRIPTED
+from vooga_env.vector.matches import batch_match
+
+STYLES = ("aerial", "punisher", "spacer", "edge_grappler", "mixup")
+
+
+@pytest.mark.parametrize("name", STYLES)
+def test_each_style_beats_idle_and_random_nine_times_in_ten(name):
+    assert name in SCRIPTED
+    for weak in ("idle", "random"):
+        result = batch_match(name, weak, 40, seed=5)
+        assert result["win_rate"] >= 0.9, (name, weak, result)
+
+
+def test_the_styles_are_not_one_fighter():
+    """Each style wins some and loses some among the others: distinct, none a pushover."""
+    scores = {
+        name: sum(batch_match(name, other, 20, seed=1)["wins"] for other in STYLES if other != name)
+        for name in STYLES
+    }
+    assert len(set(scores.values())) > 1
+    assert all(0 < score < 80 for score in scores.values()), scores
+
+
+def test_a_batch_match_repeats_from_its_seed_and_counts_every_game():
+    first = batch_match("punisher", "rush", 12, seed=3, max_cycles=200)
+    assert first == batch_match("punisher", "rush", 12, seed=3, max_cycles=200)
+    assert first["wins"] + first["draws"] + first["losses"] == 12
+    with pytest.raises(ValueError, match="games must be a positive int, got 0"):
+        batch_match("rush", "idle", 0)
+
+
+@pytest.mark.parametrize("name", STYLES)
+def test_the_single_env_plays_each_style_too(name):
+    result = run_match(name, "idle", 2, seed=0, config="small", max_cycles=300)
+    assert result.sides[0].wins == 2
