@@ -14,6 +14,7 @@ from agents.train import main, make_envs, train
 from agents.train_config import load_train_config
 from vooga_env.config import ConfigError
 from vooga_env.models import load_model
+from vooga_env.policies import SCRIPTED
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -196,7 +197,7 @@ def test_the_benchmark_runs_in_quick_mode(tmp_path, capsys):
     vs = result["vs_rush"]
     assert vs["wins"] + vs["losses"] + vs["draws"] == vs["games"] == 4
     names = {row["name"] for row in result["elo"]["ratings"]}
-    assert names == {"model", "idle", "random", "rush", "turtle", "zoner", "edge_guard"}
+    assert names == {"model", *SCRIPTED}
     assert "Elo (K=16" in capsys.readouterr().out
 
 

@@ -1,0 +1,324 @@
+"""Train a fighter in a league: one PPO learner against a pool of its own past snapshots, the
+scripted fighters and short-lived exploiters, each game's opponent drawn by PFSP.
+
+    python -m agents.league [--config league] [--out runs/NAME] [--seed N] [--minutes M]
+    python -m agents.league --config smoke_league --out /tmp/league  # seconds
+
+Config-driven (`configs/train/league.toml`; `[ppo]` as in agents.train, `[league]` below). The
+learner sits in seat 0 of `fights` batched fights (`FightVecEnv`, observations mirrored); fight
+i's opponent is `PoolOpponent.assigned[i]`, drawn again from the pool at the end of each game
+(`agents.league_pool`: harder opponents more often). Every `save_steps` a snapshot of the
+learner joins the pool (the last `window` stay); every `exploiter_every` steps (0: never) a
+fresh learner trains `exploiter_steps` steps against the frozen learner alone
+(`agents.exploit.make_learner`) and joins the pool (the last `exploiters` stay). Checkpoints,
+`--resume`, Ctrl-C and `OUT/final.zip` work as in agents.train; the learner's Elo, the pool's
+size and the PFSP win rates are logged (TensorBoard when installed).
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import importlib.util
+import json
+import shutil
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import torch
+from stable_baselines3 import PPO
+from stable_baselines3.common.callbacks import BaseCallback, CallbackList
+from stable_baselines3.common.utils import set_random_seed
+from stable_baselines3.common.vec_env import VecNormalize
+
+from vooga_env.config import ConfigError, build_config, load_config, read_toml
+from vooga_env.models import BatchPolicy, FrozenPolicy, load_model
+from vooga_env.policies import SCRIPTED
+from vooga_env.vector.opponents import VectorOpponent
+from vooga_env.vector.sb3 import FightVecEnv
+
+from .callbacks import NORMALIZER_FILE, STATE_FILE, StateCheckpointCallback, save_checkpoint
+from .exploit import make_learner
+from .league_pool import WEIGHTINGS, Pool, PoolOpponent
+from .train import StopAfter
+from .train_config import TRAIN_DIR, PPOConfig
+
+
+@dataclass(frozen=True)
+class LeagueConfig:
+    """The pool: snapshots, scripted fighters, exploiters, and how opponents are drawn."""
+
+    save_steps: int = 200_000
+    window: int = 8  # snapshots kept in the pool
+    results_window: int = 100  # the last games against a member that give its win rate
+    pfsp: str = "squared"
+    floor: float = 0.05
+    scripted: tuple[str, ...] = tuple(name for name in SCRIPTED if name != "idle")
+    exploiter_every: int = 0
+    exploiter_steps: int = 200_000
+    exploiters: int = 2  # exploiters kept in the pool
+
+    def __post_init__(self) -> None:
+        for name in self.scripted:
+            if name not in SCRIPTED:
+                raise ConfigError(f"scripted = {name!r} is not allowed: one of {list(SCRIPTED)}")
+        if self.pfsp not in WEIGHTINGS:
+            raise ConfigError(f"pfsp = {self.pfsp!r} is not allowed: one of {list(WEIGHTINGS)}")
+        for key in ("save_steps", "window", "results_window", "exploiter_steps", "exploiters"):
+            if getattr(self, key) <= 0:
+                raise ConfigError(f"{key} = {getattr(self, key)} is not allowed: must be > 0")
+        if self.exploiter_every < 0:
+            raise ConfigError(f"exploiter_every = {self.exploiter_every} is not allowed: >= 0")
+        if not 0.0 < self.floor <= 1.0:
+            raise ConfigError(f"floor = {self.floor} is not allowed: in (0, 1]")
+
+
+@dataclass(frozen=True)
+class LeagueRunConfig:
+    """One league run: the fight, the budget, the batch, PPO and the pool."""
+
+    fight: str = "default"
+    total_timesteps: int = 20_000_000
+    minutes: float = 0.0  # wall-time budget (0: none)
+    fights: int = 128
+    seed: int = 0
+    checkpoint_every: int = 500_000
+    ppo: PPOConfig = PPOConfig()
+    league: LeagueConfig = LeagueConfig()
+    name: str = "league"
+
+    def __post_init__(self) -> None:
+        for key in ("total_timesteps", "fights", "checkpoint_every"):
+            if getattr(self, key) <= 0:
+                raise ConfigError(f"{key} = {getattr(self, key)} is not allowed: must be > 0")
+
+
+def load_league_config(config: str | Path, **overrides: Any) -> LeagueRunConfig:
+    data, path = read_toml(config, TRAIN_DIR, "league config")
+    data.update({key: value for key, value in overrides.items() if value is not None})
+    return build_config(LeagueRunConfig, data, str(path))
+
+
+class LeagueCallback(BaseCallback):
+    """Records each game against its opponent, draws the next one, adds snapshots and
+    exploiters; its `state()` goes into the checkpoints."""
+
+    def __init__(self, config: LeagueRunConfig, folder: Path, state: dict[str, Any]) -> None:
+        super().__init__()
+        self.config = config
+        self.league = config.league
+        self.folder = folder
+        self.rng = np.random.default_rng([config.seed, 1])
+        self.pool = Pool(self.league.results_window, self.league.pfsp, self.league.floor)
+        self.pool.ratings.update(state.get("ratings", {}))
+        results = state.get("results", {})
+        for offset, name in enumerate(self.league.scripted):
+            member = VectorOpponent(name, config.seed + 10 + offset)
+            self.pool.add(name, member, results.get(name))
+        self.snapshots: list[str] = []
+        self.exploiters: list[str] = []
+        for kind in ("snapshots", "exploiters"):
+            for name in state.get(kind, []):
+                self._join(kind, name, results.get(name))
+        self.last_save = state.get("last_save", 0)
+        self.last_exploiter = state.get("last_exploiter", 0)
+        self.opponent: PoolOpponent | None = None
+
+    def attach(self, opponent: PoolOpponent) -> None:
+        self.opponent = opponent
+        opponent.assigned = [self.pool.draw(self.rng) for _ in opponent.assigned]
+
+    def _on_step(self) -> bool:
+        for slot in np.flatnonzero(self.locals["dones"]):
+            winner = self.locals["infos"][slot].get("winner")
+            if winner is not None:
+                score = {"win": 1.0, "draw": 0.5, "loss": 0.0}[winner]
+                self.pool.record(self.opponent.assigned[slot], score)
+            self.opponent.assigned[slot] = self.pool.draw(self.rng)
+        if self.num_timesteps - self.last_save >= self.league.save_steps:
+            self.snapshot(self.model, self.num_timesteps)
+        every = self.league.exploiter_every
+        if every and self.num_timesteps - self.last_exploiter >= every:
+            self._exploiter()
+        self.logger.record("league/learner_elo", self.pool.ratings["learner"])
+        self.logger.record("league/pool_size", len(self.pool.members))
+        return True
+
+    def _join(self, kind: str, name: str, results: list[float] | None = None) -> None:
+        """Load a saved snapshot or exploiter into the pool (sampling its actions)."""
+        policy = FrozenPolicy(load_model(self.folder / kind / f"{name}.zip"), name, False)
+        policy.reset(int(self.rng.integers(2**31)))
+        self.pool.add(name, BatchPolicy(policy), results)
+        kept = getattr(self, kind)
+        kept.append(name)
+        limit = self.league.window if kind == "snapshots" else self.league.exploiters
+        while len(kept) > limit:
+            self._leave(kept.pop(0))
+
+    def _leave(self, name: str) -> None:
+        self.pool.drop(name)
+        if self.opponent is not None:  # its fights take a new opponent now
+            self.opponent.assigned = [
+                self.pool.draw(self.rng) if member == name else member
+                for member in self.opponent.assigned
+            ]
+
+    def snapshot(self, model: PPO, steps: int) -> None:
+        """Save the learner as it is now and add it to the pool."""
+        name = f"snapshot_{steps}"
+        (self.folder / "snapshots").mkdir(parents=True, exist_ok=True)
+        model.save(self.folder / "snapshots" / f"{name}.zip")
+        self._join("snapshots", name)
+        self.last_save = steps
+
+    def _exploiter(self) -> None:
+        """Train a fresh learner against the frozen learner's argmax play, then pool it."""
+        target = BatchPolicy(FrozenPolicy(self.model, "learner", deterministic=True))
+        fights = max(self.config.fights // 2, 1)
+        envs = FightVecEnv(fights, load_config(self.config.fight), opponent=target)
+        seed = int(self.rng.integers(2**31))
+        exploiter = make_learner(envs, seed)
+        exploiter.learn(self.league.exploiter_steps)
+        name = f"exploiter_{self.num_timesteps}"
+        (self.folder / "exploiters").mkdir(parents=True, exist_ok=True)
+        exploiter.save(self.folder / "exploiters" / f"{name}.zip")
+        self._join("exploiters", name)
+        self.last_exploiter = self.num_timesteps
+
+    def state(self) -> dict[str, Any]:
+        return {
+            **self.pool.state(),
+            "snapshots": list(self.snapshots),
+            "exploiters": list(self.exploiters),
+            "last_save": self.last_save,
+            "last_exploiter": self.last_exploiter,
+        }
+
+
+def build(config: LeagueRunConfig, folder: Path, state: dict[str, Any], resume: bool):
+    """The envs, the learner (new or resumed) and the league callback."""
+    league = LeagueCallback(config, folder, state)
+    opponent = PoolOpponent(league.pool, config.fights)  # assigned when the pool is full
+    envs: Any = FightVecEnv(config.fights, load_config(config.fight), opponent=opponent)
+    ppo = config.ppo
+    if ppo.normalize_reward:
+        envs = VecNormalize(envs, norm_obs=False, norm_reward=True, gamma=ppo.gamma)
+    if resume:
+        if isinstance(envs, VecNormalize) and (folder / NORMALIZER_FILE).is_file():
+            envs = VecNormalize.load(str(folder / NORMALIZER_FILE), envs.venv)
+        model = PPO.load(folder / "latest.zip", env=envs, device="cpu")
+    else:
+        tensorboard = str(folder / "tb") if importlib.util.find_spec("tensorboard") else None
+        model = PPO(
+            "MlpPolicy",
+            envs,
+            **{key: getattr(ppo, key) for key in _PPO_KEYS},
+            policy_kwargs={"net_arch": list(ppo.net_arch)},
+            tensorboard_log=tensorboard,
+            seed=config.seed,
+            device="cpu",
+            verbose=0,
+        )
+    if not league.snapshots:  # the untrained network is the first snapshot
+        league.snapshot(model, model.num_timesteps)
+    league.attach(opponent)
+    return model, league
+
+
+_PPO_KEYS = (
+    "learning_rate",
+    "n_steps",
+    "batch_size",
+    "n_epochs",
+    "gamma",
+    "gae_lambda",
+    "ent_coef",
+    "clip_range",
+)
+
+
+def train_league(
+    config: LeagueRunConfig,
+    folder: Path,
+    resume: bool = False,
+    progress: bool = True,
+    minutes: float | None = None,
+    overwrite: bool = False,
+) -> Path:
+    """Run (or continue) a league for at most `minutes`; returns the final model's path."""
+    if not resume and (folder / "latest.zip").exists():
+        if not overwrite:
+            raise FileExistsError(
+                f"{folder} holds a run already: --resume continues it, --overwrite starts over "
+                "(deleting it), or pick another --out"
+            )
+        shutil.rmtree(folder)
+    if resume and not (folder / "latest.zip").is_file():
+        raise FileNotFoundError(f"--resume: no checkpoint at {folder / 'latest.zip'}")
+    torch.set_num_threads(1)
+    set_random_seed(config.seed)
+    folder.mkdir(parents=True, exist_ok=True)
+    state = json.loads((folder / STATE_FILE).read_text()) if resume else {}
+    if not resume:
+        (folder / "league_config.json").write_text(json.dumps(dataclasses.asdict(config), indent=2))
+    model, league = build(config, folder, state, resume)
+    every = max(config.checkpoint_every // config.fights, 1)
+    callbacks = [league, StateCheckpointCallback(every, folder, [league])]
+    minutes = minutes or config.minutes
+    callbacks += [StopAfter(minutes)] if minutes else []
+    remaining = config.total_timesteps - model.num_timesteps
+    try:
+        if remaining > 0:
+            model.learn(
+                remaining,
+                callback=CallbackList(callbacks),
+                reset_num_timesteps=not resume,
+                progress_bar=progress,
+            )
+    except BaseException:
+        save_checkpoint(model, folder, [league])
+        raise
+    save_checkpoint(model, folder, [league])
+    final = folder / "final.zip"
+    model.save(final)
+    return final
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="vooga-league", description=__doc__.splitlines()[0])
+    parser.add_argument("--config", default="league", help="a name in configs/train or a path")
+    parser.add_argument("--out", type=Path, help="run folder (default runs/CONFIG)")
+    parser.add_argument("--seed", type=int)
+    parser.add_argument("--steps", type=int, help="total timesteps (overrides the config)")
+    parser.add_argument("--resume", action="store_true", help="continue from OUT/latest.zip")
+    parser.add_argument("--overwrite", action="store_true", help="start over in a used OUT")
+    parser.add_argument("--minutes", type=float, help="stop after this much wall time")
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    args = parser.parse_args(argv)
+    try:
+        config = load_league_config(args.config, seed=args.seed, total_timesteps=args.steps)
+    except ConfigError as error:
+        parser.error(str(error))
+    folder = args.out or Path("runs") / config.name
+    try:
+        final = train_league(
+            config, folder, args.resume, not args.no_progress, args.minutes, args.overwrite
+        )
+    except KeyboardInterrupt:
+        print(
+            f"\ninterrupted: the last checkpoint is {folder / 'latest.zip'}; "
+            f"continue with --resume --out {folder}",
+            file=sys.stderr,
+        )
+        return 130
+    except (FileNotFoundError, FileExistsError, ConfigError) as error:
+        parser.error(str(error))
+    print(f"trained: {final}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
