@@ -1,10 +1,10 @@
 """Train a fighter in a league: one PPO learner against a pool of its own past snapshots, the
 scripted fighters and short-lived exploiters, each game's opponent drawn by PFSP.
 
-    python -m agents.league [--config league] [--out runs/NAME] [--seed N] [--minutes M]
-    python -m agents.league --config smoke_league --out /tmp/league  # seconds
+    python -m agents.league [--config default] [--out runs/NAME] [--seed N] [--minutes M]
+    python -m agents.league --config smoke --out /tmp/league  # seconds
 
-Config-driven (`configs/train/league.toml`; `[ppo]` as in agents.train, `[league]` below). The
+Config-driven (`configs/league/*.toml`; `[ppo]` as in agents.train, `[league]` below). The
 learner sits in seat 0 of `fights` batched fights (`FightVecEnv`, observations mirrored); fight
 i's opponent is `PoolOpponent.assigned[i]`, drawn again from the pool at the end of each game
 (`agents.league_pool`: harder opponents more often). Every `save_steps` a snapshot of the
@@ -34,7 +34,7 @@ from stable_baselines3.common.callbacks import BaseCallback, CallbackList
 from stable_baselines3.common.utils import set_random_seed
 from stable_baselines3.common.vec_env import VecNormalize
 
-from vooga_env.config import ConfigError, build_config, load_config, read_toml
+from vooga_env.config import CONFIG_DIR, ConfigError, build_config, load_config, read_toml
 from vooga_env.models import BatchPolicy, FrozenPolicy, load_model
 from vooga_env.policies import SCRIPTED
 from vooga_env.vector.opponents import VectorOpponent
@@ -44,7 +44,7 @@ from .callbacks import NORMALIZER_FILE, STATE_FILE, StateCheckpointCallback, sav
 from .exploit import make_learner
 from .league_pool import WEIGHTINGS, Pool, PoolOpponent
 from .train import StopAfter
-from .train_config import TRAIN_DIR, PPOConfig
+from .train_config import PPOConfig
 
 
 @dataclass(frozen=True)
@@ -96,8 +96,12 @@ class LeagueRunConfig:
                 raise ConfigError(f"{key} = {getattr(self, key)} is not allowed: must be > 0")
 
 
+LEAGUE_DIR = CONFIG_DIR / "league"
+
+
 def load_league_config(config: str | Path, **overrides: Any) -> LeagueRunConfig:
-    data, path = read_toml(config, TRAIN_DIR, "league config")
+    """A LeagueRunConfig from a name in configs/league/ or a .toml path, plus overrides."""
+    data, path = read_toml(config, LEAGUE_DIR, "league config")
     data.update({key: value for key, value in overrides.items() if value is not None})
     return build_config(LeagueRunConfig, data, str(path))
 
@@ -289,7 +293,7 @@ def train_league(
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="vooga-league", description=__doc__.splitlines()[0])
-    parser.add_argument("--config", default="league", help="a name in configs/train or a path")
+    parser.add_argument("--config", default="default", help="a name in configs/league or a path")
     parser.add_argument("--out", type=Path, help="run folder (default runs/CONFIG)")
     parser.add_argument("--seed", type=int)
     parser.add_argument("--steps", type=int, help="total timesteps (overrides the config)")

@@ -48,7 +48,7 @@ def test_the_pool_opponent_asks_each_member_for_its_own_fights():
 
 
 def test_a_smoke_league_pools_snapshots_and_exploiters_and_resumes(tmp_path):
-    config = load_league_config("smoke_league", total_timesteps=2048)
+    config = load_league_config("smoke", total_timesteps=2048)
     train_league(config, tmp_path, progress=False)
     state = json.loads((tmp_path / "train_state.json").read_text())
     assert state["snapshots"] == ["snapshot_1024", "snapshot_2048"]  # window 2
@@ -56,7 +56,7 @@ def test_a_smoke_league_pools_snapshots_and_exploiters_and_resumes(tmp_path):
     assert (tmp_path / "exploiters" / "exploiter_2048.zip").is_file()
     assert sum(len(state["results"][name]) for name in ("rush", "punisher")) > 0
     assert state["ratings"]["learner"] != 1200.0  # Elo moved with the games
-    final = train_league(load_league_config("smoke_league"), tmp_path, resume=True, progress=False)
+    final = train_league(load_league_config("smoke"), tmp_path, resume=True, progress=False)
     assert load_model(final).num_timesteps == 4096
     resumed = json.loads((tmp_path / "train_state.json").read_text())
     assert resumed["snapshots"] == ["snapshot_3072", "snapshot_4096"]
@@ -75,9 +75,9 @@ def test_self_play_from_scratch_has_only_snapshots(tmp_path):
 
 def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
     with pytest.raises(ConfigError, match="pfsp = 'greedy' is not allowed"):
-        load_league_config("smoke_league", league={"pfsp": "greedy"})
+        load_league_config("smoke", league={"pfsp": "greedy"})
     with pytest.raises(ConfigError, match="scripted = 'ninja' is not allowed"):
-        load_league_config("smoke_league", league={"scripted": ["ninja"]})
+        load_league_config("smoke", league={"scripted": ["ninja"]})
     with pytest.raises(SystemExit) as stop:
-        main(["--config", "smoke_league", "--out", str(tmp_path), "--resume"])
+        main(["--config", "smoke", "--out", str(tmp_path), "--resume"])
     assert stop.value.code == 2 and "no checkpoint" in capsys.readouterr().err

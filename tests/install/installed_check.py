@@ -13,6 +13,7 @@ import gymnasium
 import numpy as np
 
 import vooga_env
+from vooga_env.agents.league import load_league_config
 from vooga_env.agents.train_config import load_train_config
 from vooga_env.config import load_config
 from vooga_env.vector import VectorFight
@@ -29,6 +30,8 @@ for name in names:
     load_config(name)
 for name in train_names:
     load_train_config(name)
+for path in configs.joinpath("league").iterdir():
+    load_league_config(path.name[:-5])
 print("configs", " ".join(names), "| train", " ".join(train_names))
 
 start = time.perf_counter()
