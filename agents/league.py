@@ -40,6 +40,7 @@ from vooga_env.policies import SCRIPTED
 from vooga_env.vector.opponents import VectorOpponent
 from vooga_env.vector.sb3 import FightVecEnv
 
+from . import common
 from .callbacks import NORMALIZER_FILE, STATE_FILE, StateCheckpointCallback, save_checkpoint
 from .exploit import make_learner
 from .league_pool import WEIGHTINGS, Pool, PoolOpponent
@@ -320,8 +321,24 @@ def main(argv: list[str] | None = None) -> int:
         return 130
     except (FileNotFoundError, FileExistsError, ConfigError) as error:
         parser.error(str(error))
+    print(format_pool(json.loads((folder / STATE_FILE).read_text())))
     print(f"trained: {final}")
     return 0
+
+
+def format_pool(state: dict[str, Any]) -> str:
+    """The pool at the end: each member's recent games, the learner's score there, its Elo."""
+    rows = []
+    for name, results in state["results"].items():
+        score = 100.0 * sum(results) / len(results) if results else "-"
+        rows.append((name, len(results), score, state["ratings"].get(name, 0.0)))
+    learner = state["ratings"]["learner"]
+    return "\n\n".join(
+        [
+            f"the pool after {state['num_timesteps']} steps (learner Elo {learner:.0f})",
+            common.table(("opponent", "recent games", "learner score %", "Elo"), rows),
+        ]
+    )
 
 
 if __name__ == "__main__":

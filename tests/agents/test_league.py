@@ -62,13 +62,14 @@ def test_a_smoke_league_pools_snapshots_and_exploiters_and_resumes(tmp_path):
     assert resumed["snapshots"] == ["snapshot_3072", "snapshot_4096"]
 
 
-def test_self_play_from_scratch_has_only_snapshots(tmp_path):
+def test_self_play_from_scratch_has_only_snapshots(tmp_path, capsys):
     path = tmp_path / "selfplay.toml"
     path.write_text(
         'fight = "small"\ntotal_timesteps = 1024\nfights = 4\n[ppo]\nn_steps = 64\n'
         "batch_size = 256\nn_epochs = 1\n[league]\nsave_steps = 512\nscripted = []\n"
     )
     assert main(["--config", str(path), "--out", str(tmp_path / "run"), "--no-progress"]) == 0
+    assert "learner score %" in capsys.readouterr().out
     state = json.loads((tmp_path / "run" / "train_state.json").read_text())
     assert set(state["results"]) == {"snapshot_0", "snapshot_512", "snapshot_1024"}
 
