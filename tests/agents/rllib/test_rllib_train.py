@@ -1,0 +1,121 @@
+"""RLlib self-play on a local Ray: train, resume, export, play; clear errors for bad input.
+Skipped without the `rllib` extra."""
+
+import json
+import shutil
+import time
+
+import numpy as np
+import pytest
+
+ray = pytest.importorskip("ray")
+pytest.importorskip("ray.rllib")
+
+from agents.rllib_config import load_rllib_config  # noqa: E402
+from agents.rllib_export import export_checkpoint  # noqa: E402
+from agents.train_rllib import CHECKPOINT, check_address, connect, main, train  # noqa: E402
+from vooga_env.config import ConfigError  # noqa: E402
+from vooga_env.gym_env import FightEnv  # noqa: E402
+from vooga_env.match import run_match  # noqa: E402
+from vooga_env.models import load_mlp, save_mlp  # noqa: E402
+from vooga_env.observations import OBSERVATION_SIZE  # noqa: E402
+from vooga_env.policies import make_policy  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def smoke_run(local_ray, tmp_path_factory):
+    """One iteration, then a resume for a second: the run folder and both final states."""
+    folder = tmp_path_factory.mktemp("smoke")
+    first = train(load_rllib_config("rllib_smoke", iterations=1), folder, echo=False)
+    second = train(load_rllib_config("rllib_smoke", iterations=2), folder, resume=True, echo=False)
+    return folder, first, second
+
+
+def test_smoke_trains_resumes_and_logs_the_league(smoke_run):
+    folder, first, second = smoke_run
+    config = load_rllib_config("rllib_smoke")
+    assert first["iteration"] == 1
+    assert first["league"]["snapshots"] == ["main_v1"]  # snapshot_every = 1
+    assert second["iteration"] == 2
+    assert second["league"]["snapshots"] == ["main_v1", "main_v2"]
+    progress = [json.loads(line) for line in (folder / "progress.jsonl").read_text().splitlines()]
+    assert [p["iteration"] for p in progress] == [1, 2]
+    assert progress[-1]["env_steps"] >= config.ppo.train_batch_size
+    assert progress[-1]["pool"] == ["idle", "rush", "main_v1", "main_v2"]  # after iteration 2
+    assert set(progress[-1]["elo"]) >= {"main", "main_v1"}
+    assert sum(second["nodes"].values()) >= 2 * config.ppo.train_batch_size
+
+
+def test_the_exported_fighter_plays_matches_and_the_gym_env(smoke_run):
+    folder, _, _ = smoke_run
+    fighter = make_policy(folder / "main.npz")
+    result = run_match(fighter, "rush", episodes=2, config="small", seed=0)
+    assert result.games == 2
+    env = FightEnv(config="small", opponent=str(folder / "main.npz"))
+    observation, _ = env.reset(seed=0)
+    env.step(fighter.act(observation))
+
+
+def test_export_gives_the_modules_own_logits(smoke_run, tmp_path):
+    import torch
+    from ray.rllib.core.columns import Columns
+    from ray.rllib.core.rl_module.rl_module import RLModule
+
+    folder, _, _ = smoke_run
+    path = export_checkpoint(folder / CHECKPOINT, "main_v2", tmp_path / "exported.npz")
+    module = RLModule.from_checkpoint(
+        folder / CHECKPOINT / "learner_group" / "learner" / "rl_module" / "main_v2"
+    )
+    observations = np.random.default_rng(0).uniform(-1, 1, (16, OBSERVATION_SIZE))
+    with torch.no_grad():
+        batch = {Columns.OBS: torch.as_tensor(observations, dtype=torch.float32)}
+        expected = module.forward_inference(batch)[Columns.ACTION_DIST_INPUTS].numpy()
+    exported = load_mlp(path)
+    np.testing.assert_allclose(exported.logits(observations), expected, atol=1e-5)
+    assert np.array_equal(exported.logits(observations).argmax(1), expected.argmax(1))
+
+
+def test_resume_from_a_checkpoint_that_does_not_fit_names_it(smoke_run, tmp_path):
+    folder = tmp_path / "run"
+    shutil.copytree(smoke_run[0], folder)
+    wider = load_rllib_config("rllib_smoke", iterations=3, ppo={"net_arch": [48, 48]})
+    with pytest.raises(ConfigError, match=f"checkpoint {folder / CHECKPOINT} does not fit"):
+        train(wider, folder, resume=True, echo=False)
+
+
+def test_more_env_runners_than_cpus_is_refused_not_waited_for(local_ray):
+    with pytest.raises(ConfigError, match="--env-runners 3 needs 3 CPUs"):
+        connect(None, env_runners=3)
+
+
+def test_an_address_that_does_not_answer_fails_within_seconds(capsys, tmp_path):
+    start = time.monotonic()
+    with pytest.raises(SystemExit):
+        main(["--config", "rllib_smoke", "--out", str(tmp_path), "--address", "127.0.0.1:9"])
+    assert time.monotonic() - start < 10
+    assert "--address 127.0.0.1:9: no Ray cluster answers there" in capsys.readouterr().err
+    with pytest.raises(ConfigError, match="not HOST:PORT"):
+        check_address("nowhere")
+
+
+def test_an_unknown_module_id_is_named_with_the_known_ones(tmp_path):
+    modules = tmp_path / CHECKPOINT / "learner_group" / "learner" / "rl_module"
+    for name in ("main", "rush"):
+        (modules / name).mkdir(parents=True)
+    with pytest.raises(KeyError, match="module 'mian' is not in .* it holds main, rush"):
+        export_checkpoint(tmp_path / CHECKPOINT, "mian", tmp_path / "x.npz")
+
+
+def test_a_fighter_for_another_observation_size_is_refused(tmp_path):
+    rng = np.random.default_rng(0)
+    layers = [(rng.normal(size=(OBSERVATION_SIZE + 3, 8)), np.zeros(8)), (np.ones((8, 10)), [0])]
+    path = save_mlp(tmp_path / "other.npz", layers, "tanh")
+    with pytest.raises(ValueError, match=f"observations of size {OBSERVATION_SIZE + 3}"):
+        make_policy(path)
+
+
+def test_bad_config_keys_are_named():
+    with pytest.raises(ConfigError, match="unknown key 'ppo.lambda'"):
+        load_rllib_config("rllib_smoke", ppo={"lambda": 0.9})
+    with pytest.raises(ConfigError, match="scripted = 'rushh' is not allowed"):
+        load_rllib_config("rllib_smoke", league={"scripted": ["rushh"]})
