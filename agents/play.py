@@ -142,7 +142,9 @@ def build_parser() -> argparse.ArgumentParser:
         epilog=__doc__.split("\n\n", 2)[2],
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    parser.add_argument("opponent", help="a scripted name or a saved model path (.zip)")
+    parser.add_argument(
+        "opponent", help="a scripted name, a saved model (.zip) or an exported fighter (.npz)"
+    )
     parser.add_argument(
         "--seat",
         type=int,

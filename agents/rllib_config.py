@@ -89,6 +89,8 @@ class RLlibTrainConfig:
     env_runners: int = 0  # 0: sample in the driver process
     envs_per_runner: int = 8
     checkpoint_every: int = 5  # iterations
+    learners: int = 0  # 0: one learner in the driver process; N: N learner actors (DDP)
+    gpus_per_learner: float = 0.0  # 1: each learner (or the driver's) trains on a GPU
     ppo: RLlibPPOConfig = RLlibPPOConfig()
     league: LeagueConfig = LeagueConfig()
     name: str = "rllib"
@@ -97,6 +99,9 @@ class RLlibTrainConfig:
         for key in ("iterations", "envs_per_runner", "checkpoint_every"):
             if getattr(self, key) <= 0:
                 raise ConfigError(f"{key} = {getattr(self, key)} is not allowed: must be > 0")
+        if self.learners < 0 or self.gpus_per_learner < 0:
+            key = "learners" if self.learners < 0 else "gpus_per_learner"
+            raise ConfigError(f"{key} = {getattr(self, key)} is not allowed: must be >= 0")
         if self.env_runners < 0:
             raise ConfigError(f"env_runners = {self.env_runners} is not allowed: must be >= 0")
         if self.minutes < 0:

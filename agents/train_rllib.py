@@ -53,29 +53,45 @@ def check_address(address: str) -> None:
         ) from None
 
 
-def connect(address: str | None, env_runners: int, temp_dir: str | None = None) -> bool:
-    """Join (or start) Ray; True when this call started it (and so must shut it down)."""
+def needs(config: RLlibTrainConfig) -> dict[str, float]:
+    """The Ray resources this run's actors ask for: a CPU per env runner and per learner actor,
+    and the learners' GPUs (the driver's own learner too, when `learners` is 0)."""
+    learner_cpus = config.learners if config.gpus_per_learner == 0 else 0
+    return {
+        "CPU": float(config.env_runners + learner_cpus),
+        "GPU": max(config.learners, 1) * config.gpus_per_learner,
+    }
+
+
+def connect(address: str | None, config: RLlibTrainConfig, temp_dir: str | None = None) -> bool:
+    """Join (or start) Ray; True when this call started it (and so must shut it down).
+
+    Refuses a run whose actors need more CPUs or GPUs than the cluster has: Ray would wait for
+    them forever.
+    """
     import ray
 
     if address:
         check_address(address)
-    if not ray.is_initialized():
+    started = not ray.is_initialized()
+    if started:
         ray.init(
             address=address or None,
             include_dashboard=False if not address else None,
             _temp_dir=temp_dir,
             logging_level="ERROR",
         )
-        started = True
-    else:
-        started = False
-    cpus = ray.cluster_resources().get("CPU", 0)
-    if env_runners > cpus:
+    have = ray.cluster_resources()
+    short = {kind: n for kind, n in needs(config).items() if n > have.get(kind, 0)}
+    if short:
         if started:
             ray.shutdown()
+        missing = " and ".join(f"{n:g} {kind}s" for kind, n in short.items())
+        has = " and ".join(f"{have.get(kind, 0):g} {kind}s" for kind in short)
         raise ConfigError(
-            f"--env-runners {env_runners} needs {env_runners} CPUs, the Ray cluster has "
-            f"{cpus:g}: Ray would wait for them forever"
+            f"env_runners = {config.env_runners}, learners = {config.learners}, "
+            f"gpus_per_learner = {config.gpus_per_learner:g} need {missing}; the Ray cluster "
+            f"has {has} (Ray would wait for them forever)"
         )
     return started
 
@@ -122,7 +138,7 @@ def algorithm_config(config: RLlibTrainConfig, league: Any) -> Any:
             entropy_coeff=ppo.entropy_coeff,
             clip_param=ppo.clip_param,
         )
-        .learners(num_learners=0)
+        .learners(num_learners=config.learners, num_gpus_per_learner=config.gpus_per_learner)
         .callbacks(LeagueCallbacks)
         .debugging(seed=config.seed)
     )
@@ -221,6 +237,10 @@ def iteration_report(iteration: int, result: dict[str, Any], league: Any) -> dic
         "env_steps": steps,
         "seconds": round(seconds, 3),
         "env_steps_per_s": round(steps / seconds, 1) if seconds else 0.0,
+        # per vector step of one runner (means over its steps): the env's share of sampling
+        "env_step_ms": round(1e3 * float(runners.get("env_step_timer", 0.0)), 3),
+        "inference_ms": round(1e3 * float(runners.get("rlmodule_inference_timer", 0.0)), 3),
+        "connectors_ms": round(1e3 * float(runners.get("connector_pipeline_timer", 0.0)), 3),
         "pool": list(league.pool),
         "win_rates": {k: round(v, 3) for k, v in league.win_rates.items()},
         "elo": {k: round(v, 1) for k, v in league.ratings.items()},
@@ -267,9 +287,13 @@ def train(
 ) -> dict[str, Any]:
     """Run (or continue) one training; returns the final state (what train_state.json holds)."""
     import ray
+    import torch
 
     from .rllib_league import League
 
+    # As agents.train: small networks, and the driver's own sampling (0 env runners) spends 20x
+    # longer in inference when torch's thread pool fights the learner and the env for 2 cores.
+    torch.set_num_threads(1)
     saved = prepare(folder, resume, overwrite)
     folder.mkdir(parents=True, exist_ok=True)
     if not saved:
@@ -277,7 +301,7 @@ def train(
     league = League.from_dict(config.league, saved["league"]) if saved else League(config.league)
     if not league.pool:  # no scripted fighters: main starts against a copy of itself
         league.new_snapshot()
-    started = connect(address, config.env_runners, temp_dir)
+    started = connect(address, config, temp_dir)
     try:
         algo = algorithm_config(config, league).build_algo()
         try:

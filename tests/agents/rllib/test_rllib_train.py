@@ -2,8 +2,13 @@
 Skipped without the `rllib` extra."""
 
 import json
+import os
 import shutil
+import signal
+import subprocess
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -20,6 +25,8 @@ from vooga_env.match import run_match  # noqa: E402
 from vooga_env.models import load_mlp, save_mlp  # noqa: E402
 from vooga_env.observations import OBSERVATION_SIZE  # noqa: E402
 from vooga_env.policies import make_policy  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[3]
 
 
 @pytest.fixture(scope="module")
@@ -83,9 +90,11 @@ def test_resume_from_a_checkpoint_that_does_not_fit_names_it(smoke_run, tmp_path
         train(wider, folder, resume=True, echo=False)
 
 
-def test_more_env_runners_than_cpus_is_refused_not_waited_for(local_ray):
-    with pytest.raises(ConfigError, match="--env-runners 3 needs 3 CPUs"):
-        connect(None, env_runners=3)
+def test_more_env_runners_or_gpus_than_the_cluster_has_are_refused_not_waited_for(local_ray):
+    with pytest.raises(ConfigError, match="env_runners = 3, .* need 3 CPUs; .* has 2 CPUs"):
+        connect(None, load_rllib_config("rllib_smoke", env_runners=3))
+    with pytest.raises(ConfigError, match="gpus_per_learner = 1 need 1 GPUs; .* has 0 GPUs"):
+        connect(None, load_rllib_config("rllib_smoke", gpus_per_learner=1.0))
 
 
 def test_an_address_that_does_not_answer_fails_within_seconds(capsys, tmp_path):
@@ -119,3 +128,32 @@ def test_bad_config_keys_are_named():
         load_rllib_config("rllib_smoke", ppo={"lambda": 0.9})
     with pytest.raises(ConfigError, match="scripted = 'rushh' is not allowed"):
         load_rllib_config("rllib_smoke", league={"scripted": ["rushh"]})
+
+
+@pytest.mark.slow  # ~25 s: a Ray of its own in a subprocess
+def test_ctrl_c_keeps_the_last_checkpoint(tmp_path, tmp_path_factory, no_ray_left):
+    out = tmp_path / "run"
+    temp_dir = tmp_path_factory.mktemp("ray")  # short: Ray's socket paths must fit 107 bytes
+    command = [sys.executable, "-m", "agents.train_rllib", "--config", "rllib_smoke"]
+    command += ["--out", str(out), "--iterations", "1000"]
+    # As at a terminal: a suite started in the background inherits an ignored SIGINT.
+    process = subprocess.Popen(
+        command,
+        cwd=ROOT,
+        stderr=subprocess.PIPE,
+        text=True,
+        env={**os.environ, "RAY_TMPDIR": str(temp_dir)},
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )
+    deadline = time.monotonic() + 120
+    while not (out / "train_state.json").is_file():
+        assert process.poll() is None and time.monotonic() < deadline, process.stderr.read()
+        time.sleep(0.2)
+    process.send_signal(signal.SIGINT)
+    _, stderr = process.communicate(timeout=60)
+    assert process.returncode == 130, stderr
+    assert "--resume" in stderr
+    state = json.loads((out / "train_state.json").read_text())
+    assert 1 <= state["iteration"] < 1000
+    assert make_policy(out / "main.npz").act(np.zeros(OBSERVATION_SIZE)) in range(10)
+    no_ray_left(temp_dir)
