@@ -18,7 +18,9 @@ def module_layers(module: Any) -> tuple[Layers, str]:
     import torch
 
     encoder = getattr(module, "encoder", None)
-    actor = getattr(encoder, "actor_encoder", None) or getattr(encoder, "encoder", None)
+    actor = getattr(encoder, "actor_encoder", None)  # vf_share_layers off: its own encoder
+    if actor is None:
+        actor = getattr(encoder, "encoder", None)
     head = getattr(module, "pi", None)
     if actor is None or head is None:
         raise ValueError(

@@ -38,7 +38,7 @@ CONNECT_TIMEOUT_S = 3.0
 
 def check_address(address: str) -> None:
     """Fail within seconds, naming it, when a cluster address does not answer (ray.init itself
-    retries for a minute or more). "auto" and "local" are left to Ray."""
+    keeps retrying: 2.60 was still at it after 150 s). "auto" and "local" are left to Ray."""
     if address in ("auto", "local"):
         return
     host, _, port = address.removeprefix("ray://").rpartition(":")

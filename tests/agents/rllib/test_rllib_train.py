@@ -157,3 +157,37 @@ def test_ctrl_c_keeps_the_last_checkpoint(tmp_path, tmp_path_factory, no_ray_lef
     assert 1 <= state["iteration"] < 1000
     assert make_policy(out / "main.npz").act(np.zeros(OBSERVATION_SIZE)) in range(10)
     no_ray_left(temp_dir)
+
+
+@pytest.mark.parametrize(("shared", "activation"), [(True, "relu"), (False, "tanh")])
+def test_export_reads_shared_and_separate_actor_encoders(shared, activation, tmp_path):
+    """Both layouts of RLlib's default PPO module, built without Ray running."""
+    import gymnasium
+    import torch
+    from ray.rllib.core.columns import Columns
+    from ray.rllib.algorithms.ppo.torch.default_ppo_torch_rl_module import (
+        DefaultPPOTorchRLModule,
+    )
+    from ray.rllib.core.rl_module.default_model_config import DefaultModelConfig
+    from ray.rllib.core.rl_module.rl_module import RLModuleSpec
+
+    from agents.rllib_export import export_module
+    from vooga_env.observations import HIGH, LOW
+
+    model = DefaultModelConfig(
+        fcnet_hiddens=[16, 8], fcnet_activation=activation, vf_share_layers=shared
+    )
+    spec = RLModuleSpec(
+        module_class=DefaultPPOTorchRLModule,
+        observation_space=gymnasium.spaces.Box(LOW, HIGH, (OBSERVATION_SIZE,), np.float32),
+        action_space=gymnasium.spaces.Discrete(10),
+        model_config=model,
+    )
+    module = spec.build()
+    exported = load_mlp(export_module(module, tmp_path / "m.npz"))
+    assert exported.activation_name == activation
+    observations = np.random.default_rng(1).uniform(-2, 2, (8, OBSERVATION_SIZE))
+    with torch.no_grad():
+        batch = {Columns.OBS: torch.as_tensor(observations, dtype=torch.float32)}
+        expected = module.forward_inference(batch)[Columns.ACTION_DIST_INPUTS].numpy()
+    np.testing.assert_allclose(exported.logits(observations), expected, atol=1e-5)
