@@ -215,6 +215,33 @@ def save(algo: Any, folder: Path, state: dict[str, Any]) -> None:
     temporary.replace(folder / STATE_FILE)
 
 
+def check_checkpoint(folder: Path) -> None:
+    """Before Ray starts: the checkpoint's `main` must read this fight's observations and act
+    with its actions (an old checkpoint, or one of another game, is named with both sizes)."""
+    from ray.rllib.core.rl_module.rl_module import RLModule
+
+    from .rllib_league import MAIN
+    from vooga_env.actions import Action
+    from vooga_env.observations import OBSERVATION_SIZE
+
+    path = folder / CHECKPOINT / "learner_group" / "learner" / "rl_module" / MAIN
+    if not path.is_dir():
+        raise FileNotFoundError(f"--resume: {folder / CHECKPOINT} holds no module {MAIN!r}")
+    module = RLModule.from_checkpoint(path)
+    shape = getattr(module.observation_space, "shape", None)
+    if shape != (OBSERVATION_SIZE,):
+        raise ConfigError(
+            f"checkpoint {folder / CHECKPOINT}: module {MAIN!r} reads observations of shape "
+            f"{shape}, the fight gives ({OBSERVATION_SIZE},)"
+        )
+    actions = getattr(module.action_space, "n", None)
+    if actions != len(Action):
+        raise ConfigError(
+            f"checkpoint {folder / CHECKPOINT}: module {MAIN!r} has {actions} actions, "
+            f"the fight has {len(Action)}"
+        )
+
+
 def restore(algo: Any, folder: Path) -> None:
     """Load the run's checkpoint into `algo`, or say which checkpoint does not fit and why."""
     try:
@@ -295,6 +322,8 @@ def train(
     # longer in inference when torch's thread pool fights the learner and the env for 2 cores.
     torch.set_num_threads(1)
     saved = prepare(folder, resume, overwrite)
+    if saved:
+        check_checkpoint(folder)
     folder.mkdir(parents=True, exist_ok=True)
     if not saved:
         (folder / "train_config.json").write_text(json.dumps(dataclasses.asdict(config), indent=2))

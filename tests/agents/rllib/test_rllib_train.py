@@ -9,6 +9,7 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -115,6 +116,20 @@ def test_an_unknown_module_id_is_named_with_the_known_ones(tmp_path):
         export_checkpoint(tmp_path / CHECKPOINT, "mian", tmp_path / "x.npz")
 
 
+def test_resume_from_a_checkpoint_of_another_observation_size_names_both(tmp_path):
+    """Refused before Ray starts: a module saved for 45 observations, where the fight has 41."""
+    import gymnasium
+
+    main_path = tmp_path / CHECKPOINT / "learner_group" / "learner" / "rl_module" / "main"
+    module = default_module(gymnasium.spaces.Box(-2, 2, (OBSERVATION_SIZE + 4,), np.float32))
+    module.save_to_path(main_path)
+    (tmp_path / "train_state.json").write_text(json.dumps({"iteration": 1}))
+    start = time.monotonic()
+    with pytest.raises(ConfigError, match=r"reads observations of shape \(45,\), .* gives \(41,\)"):
+        train(load_rllib_config("rllib_smoke"), tmp_path, resume=True, echo=False)
+    assert time.monotonic() - start < 10
+
+
 def test_a_fighter_for_another_observation_size_is_refused(tmp_path):
     rng = np.random.default_rng(0)
     layers = [(rng.normal(size=(OBSERVATION_SIZE + 3, 8)), np.zeros(8)), (np.ones((8, 10)), [0])]
@@ -159,31 +174,35 @@ def test_ctrl_c_keeps_the_last_checkpoint(tmp_path, tmp_path_factory, no_ray_lef
     no_ray_left(temp_dir)
 
 
-@pytest.mark.parametrize(("shared", "activation"), [(True, "relu"), (False, "tanh")])
-def test_export_reads_shared_and_separate_actor_encoders(shared, activation, tmp_path):
-    """Both layouts of RLlib's default PPO module, built without Ray running."""
+def default_module(observation_space, **model: Any) -> Any:
+    """RLlib's default PPO torch module for these spaces, built without Ray running."""
     import gymnasium
-    import torch
-    from ray.rllib.core.columns import Columns
     from ray.rllib.algorithms.ppo.torch.default_ppo_torch_rl_module import (
         DefaultPPOTorchRLModule,
     )
     from ray.rllib.core.rl_module.default_model_config import DefaultModelConfig
     from ray.rllib.core.rl_module.rl_module import RLModuleSpec
 
+    return RLModuleSpec(
+        module_class=DefaultPPOTorchRLModule,
+        observation_space=observation_space,
+        action_space=gymnasium.spaces.Discrete(10),
+        model_config=DefaultModelConfig(**{"fcnet_hiddens": [16, 8], **model}),
+    ).build()
+
+
+@pytest.mark.parametrize(("shared", "activation"), [(True, "relu"), (False, "tanh")])
+def test_export_reads_shared_and_separate_actor_encoders(shared, activation, tmp_path):
+    """Both layouts of RLlib's default PPO module."""
+    import gymnasium
+    import torch
+    from ray.rllib.core.columns import Columns
+
     from agents.rllib_export import export_module
     from vooga_env.observations import HIGH, LOW
 
-    model = DefaultModelConfig(
-        fcnet_hiddens=[16, 8], fcnet_activation=activation, vf_share_layers=shared
-    )
-    spec = RLModuleSpec(
-        module_class=DefaultPPOTorchRLModule,
-        observation_space=gymnasium.spaces.Box(LOW, HIGH, (OBSERVATION_SIZE,), np.float32),
-        action_space=gymnasium.spaces.Discrete(10),
-        model_config=model,
-    )
-    module = spec.build()
+    space = gymnasium.spaces.Box(LOW, HIGH, (OBSERVATION_SIZE,), np.float32)
+    module = default_module(space, fcnet_activation=activation, vf_share_layers=shared)
     exported = load_mlp(export_module(module, tmp_path / "m.npz"))
     assert exported.activation_name == activation
     observations = np.random.default_rng(1).uniform(-2, 2, (8, OBSERVATION_SIZE))
