@@ -6,9 +6,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .train_config import TRAIN_DIR
 from vooga_env.config import ConfigError, build_config, read_toml
 from vooga_env.policies import SCRIPTED
+
+from .train_config import TRAIN_DIR
 
 ACTIVATIONS = ("tanh", "relu")
 

@@ -18,9 +18,10 @@ from typing import Any
 import numpy as np
 from ray.rllib.callbacks.callbacks import RLlibCallback
 
-from .rllib_config import LeagueConfig
 from vooga_env.elo import K_FACTOR, START_RATING, expected_score
 from vooga_env.parallel import AGENTS
+
+from .rllib_config import LeagueConfig
 
 MAIN = "main"
 """The module that learns."""

@@ -27,8 +27,9 @@ import time
 from pathlib import Path
 from typing import Any
 
-from .rllib_config import RLlibTrainConfig, load_rllib_config
 from vooga_env.config import ConfigError
+
+from .rllib_config import RLlibTrainConfig, load_rllib_config
 
 CHECKPOINT = "checkpoint"
 STATE_FILE = "train_state.json"
@@ -220,9 +221,10 @@ def check_checkpoint(folder: Path) -> None:
     with its actions (an old checkpoint, or one of another game, is named with both sizes)."""
     from ray.rllib.core.rl_module.rl_module import RLModule
 
-    from .rllib_league import MAIN
     from vooga_env.actions import Action
     from vooga_env.observations import OBSERVATION_SIZE
+
+    from .rllib_league import MAIN
 
     path = folder / CHECKPOINT / "learner_group" / "learner" / "rl_module" / MAIN
     if not path.is_dir():
