@@ -36,6 +36,7 @@ def local_ray(tmp_path_factory):
     ray = pytest.importorskip("ray")
     temp_dir = tmp_path_factory.mktemp("ray")
     ray.init(num_cpus=2, include_dashboard=False, _temp_dir=str(temp_dir), logging_level="ERROR")
+    assert ray_processes(temp_dir), "Ray's processes name their temp dir: the check below can fail"
     yield temp_dir
     ray.shutdown()
     assert_no_ray_left(temp_dir)
