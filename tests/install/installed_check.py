@@ -62,3 +62,13 @@ sb3 = FightVecEnv(4, opponent="rush")
 sb3.reset()
 sb3.step(np.zeros(4, dtype=np.int64))
 print("faces ok")
+
+if importlib.util.find_spec("ray") is not None:  # the rllib extra
+    from vooga_env.agents.rllib_env import FightMultiAgentEnv
+    from vooga_env.agents.train_rllib import main as train_rllib  # noqa: F401
+
+    multi = FightMultiAgentEnv({"fight": "small", "max_cycles": 20})
+    multi.reset(seed=0)
+    _, _, _, truncated, _ = multi.step({"fighter_0": 1, "fighter_1": 2})
+    assert "__all__" in truncated
+    print("rllib ok")
