@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import json
-import os
 from collections import deque
 from pathlib import Path
 from typing import Any
@@ -11,12 +9,10 @@ from typing import Any
 import numpy as np
 from stable_baselines3.common.callbacks import BaseCallback, CheckpointCallback
 
+from .checkpoints import CHECKPOINTS, atomic_write, check_finite, save_checkpoint
 from .train_config import CurriculumConfig, SelfPlayConfig
 from vooga_env.elo import START_RATING, update
 from vooga_env.models import FrozenPolicy, load_model
-
-STATE_FILE = "train_state.json"
-NORMALIZER_FILE = "vec_normalize.pkl"  # VecNormalize's running statistics, for --resume
 
 
 def learner_won(info: dict[str, Any]) -> float | None:
@@ -137,8 +133,8 @@ class SelfPlayCallback(BaseCallback):
 
     def _snapshot(self) -> None:
         name = f"snapshot_{self.num_timesteps}"
-        path = self.folder / f"{name}.zip"
-        self.model.save(path)
+        check_finite(self.model, self.num_timesteps)  # a diverged snapshot would poison the pool
+        atomic_write(self.folder / f"{name}.zip", self.model.save)
         self.pool.append(name)
         self.ratings.setdefault(name, self.ratings["learner"])
         self.pool = self.pool[-self.config.window :]
@@ -175,34 +171,18 @@ class SelfPlayCallback(BaseCallback):
 
 
 class StateCheckpointCallback(CheckpointCallback):
-    """SB3's CheckpointCallback, plus the run's state and a `latest.zip` written atomically."""
+    """SB3's CheckpointCallback (its schedule and names), saving through `save_checkpoint`:
+    atomic files, committed in the run's state, never a non-finite model."""
 
     def __init__(self, save_freq: int, folder: Path, parts: list[Any]) -> None:
-        super().__init__(
-            save_freq=save_freq, save_path=str(folder / "checkpoints"), name_prefix="ppo"
-        )
+        super().__init__(save_freq, str(folder / CHECKPOINTS), name_prefix="ppo")
         self.folder = folder
         self.parts = parts
 
     def _on_step(self) -> bool:
         if self.n_calls % self.save_freq == 0:
             save_checkpoint(self.model, self.folder, self.parts)
-        return super()._on_step()
+        return True
 
-
-def save_checkpoint(model: Any, folder: Path, parts: list[Any]) -> None:
-    """Write latest.zip, the reward normaliser's statistics (if any) and train_state.json, each
-    atomically, so that a crash mid-write leaves the previous checkpoint whole."""
-    folder.mkdir(parents=True, exist_ok=True)
-    temporary = folder / "latest.tmp.zip"
-    model.save(temporary)
-    os.replace(temporary, folder / "latest.zip")
-    normalizer = model.get_vec_normalize_env()
-    if normalizer is not None:
-        normalizer.save(str(folder / f"{NORMALIZER_FILE}.tmp"))
-        os.replace(folder / f"{NORMALIZER_FILE}.tmp", folder / NORMALIZER_FILE)
-    state = {"num_timesteps": int(model.num_timesteps)}
-    for part in parts:
-        state.update(part.state())
-    (folder / f"{STATE_FILE}.tmp").write_text(json.dumps(state, indent=2))
-    os.replace(folder / f"{STATE_FILE}.tmp", folder / STATE_FILE)
+    def _on_rollout_end(self) -> None:
+        check_finite(self.model, self.num_timesteps)  # stop at the first bad update, not later

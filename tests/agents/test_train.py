@@ -26,7 +26,9 @@ def test_scripted_curriculum_writes_loadable_models(tmp_path):
     assert state["num_timesteps"] == config.total_timesteps
     assert state["opponent"] in config.curriculum.ladder
     checkpoints = sorted((tmp_path / "checkpoints").glob("*.zip"))
-    assert [p.name for p in checkpoints] == ["ppo_1024_steps.zip", "ppo_2048_steps.zip"]
+    names = ["ppo_0_steps.zip", "ppo_1024_steps.zip", "ppo_2048_steps.zip"]  # 0: resumable at once
+    assert sorted(p.name for p in checkpoints) == sorted(names)
+    assert state["checkpoint"] == "checkpoints/ppo_2048_steps.zip"
     load_model(checkpoints[0])
 
 
@@ -63,7 +65,7 @@ def test_init_starts_from_a_saved_models_weights_or_says_why_not(tmp_path):
     config = load_train_config("smoke", total_timesteps=512)
     saved = train(config, tmp_path / "first", progress=False)
     model = build_model(config, make_envs(config), tmp_path)
-    start_from(model, str(saved), config)
+    start_from(model, load_model(saved), config)
     expected = load_model(saved).policy.state_dict()
     for name, tensor in model.policy.state_dict().items():
         assert torch.equal(tensor, expected[name]), name
