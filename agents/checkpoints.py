@@ -17,12 +17,12 @@ import fcntl
 import hashlib
 import json
 import os
-import tempfile
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+from vooga_env.files import atomic_write, atomic_write_text, fsync
 
 STATE_FILE = "train_state.json"
 LATEST = "latest.zip"
@@ -43,44 +43,13 @@ class BrokenRun(ValueError):
     """The run folder's state file, or a file it names, cannot be used to resume."""
 
 
-def atomic_write(path: Path, write: Callable[[str], Any]) -> Path:
-    """Write `path` through `write(temporary_path)`, then fsync and rename it into place.
-
-    Readers (and a later resume) see the old file or the new one whole, never a part.
-    """
-    path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    os.close(handle)
-    try:
-        write(temporary)
-        _fsync(temporary)
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
-    _fsync(path.parent)  # makes the rename durable: the name lives in the folder
-    return path
-
-
-def atomic_write_text(path: Path, text: str) -> Path:
-    return atomic_write(path, lambda temporary: Path(temporary).write_text(text))
-
-
 def atomic_link(source: Path, path: Path) -> None:
     """Make `path` another name of `source` (a hard link), replacing what `path` was atomically."""
     temporary = path.with_name(f".{path.name}.{os.getpid()}.link")
     temporary.unlink(missing_ok=True)
     os.link(source, temporary)
     os.replace(temporary, path)
-    _fsync(path.parent)
-
-
-def _fsync(path: str | Path) -> None:
-    handle = os.open(path, os.O_RDONLY)
-    try:
-        os.fsync(handle)
-    finally:
-        os.close(handle)
+    fsync(path.parent)
 
 
 def sha256(path: Path) -> str:

@@ -57,7 +57,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         except (ValueError, ImportError) as error:
             parser.error(f"--record: {error}")
     if args.record_scale < 1:
-        parser.error("--record-scale must be >= 1")
+        parser.error(f"--record-scale {args.record_scale} is not allowed: must be >= 1")
+    for flag, path in (("--record", args.record), ("--save-replay", args.save_replay)):
+        if path:
+            common.check_output(parser, flag, path)
     if args.replay:
         if args.policies:
             parser.error("--replay plays a file back; give no policies with it")

@@ -158,6 +158,8 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    if args.save_replay:
+        common.check_output(parser, "--save-replay", args.save_replay)
     config = common.fight_config(parser, args)
     opponent = common.policy(parser, args.opponent)
     print(__doc__.split("\n\n", 2)[2].rstrip())

@@ -25,6 +25,7 @@ import numpy as np
 
 from vooga_env.actions import Action
 from vooga_env.config import ConfigError, FightConfig, load_config
+from vooga_env.files import atomic_write_text
 from vooga_env.match import EpisodeRecord, capture_frame
 
 FORMAT = "vooga_env.replay"
@@ -110,10 +111,9 @@ class Replay:
 
     def save(self, path: str | Path) -> Path:
         """Write the replay as JSON (folders made as needed); returns the path."""
-        path = Path(path)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(json.dumps(self.to_dict(), separators=(",", ":")) + "\n")
-        return path
+        return atomic_write_text(
+            Path(path), json.dumps(self.to_dict(), separators=(",", ":")) + "\n"
+        )
 
     @classmethod
     def load(cls, path: str | Path) -> Replay:
