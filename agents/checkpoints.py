@@ -71,8 +71,11 @@ def check_finite(model: Any, step: int) -> None:
             bad.append(f"{name} ({count} of {values.size})")
             total += count
     if bad:
+        more = f" and {len(bad) - 3} more tensors" if len(bad) > 3 else ""
         raise Diverged(
-            f"training diverged by step {step}: {total} non-finite weights in " + ", ".join(bad)
+            f"training diverged by step {step}: {total} non-finite weights, in "
+            + ", ".join(bad[:3])
+            + more
         )
 
 
@@ -113,6 +116,14 @@ def link_latest(folder: Path, state: dict[str, Any]) -> None:
     atomic_link(folder / state["checkpoint"], folder / LATEST)
     if "normalizer" in state:
         atomic_link(folder / state["normalizer"], folder / NORMALIZER_FILE)
+
+
+def remove_partial_files(folder: Path) -> list[Path]:
+    """Delete the temp files of writes a kill cut short (only the run holding the lock may)."""
+    partial = [*folder.rglob(".*.tmp"), *folder.rglob(".*.link")]
+    for path in partial:
+        path.unlink()
+    return partial
 
 
 def read_state(folder: Path) -> dict[str, Any]:

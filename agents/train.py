@@ -40,8 +40,10 @@ from .checkpoints import (
     RunLocked,
     atomic_write,
     atomic_write_text,
+    check_finite,
     link_latest,
     read_state,
+    remove_partial_files,
     save_checkpoint,
 )
 from .train_config import TrainConfig, load_train_config
@@ -91,9 +93,11 @@ def load_init(config: TrainConfig) -> Any:
     if not config.init:
         return None
     try:
-        return load_model(config.init)
-    except (FileNotFoundError, ValueError) as error:  # no file, not a model, spaces that don't fit
+        model = load_model(config.init)
+        check_finite(model, model.num_timesteps)
+    except (FileNotFoundError, ValueError, Diverged) as error:  # not a usable model
         raise ConfigError(f"init = {config.init!r}: {error}") from error
+    return model
 
 
 def start_from(model: PPO, saved: Any, config: TrainConfig) -> None:
@@ -149,6 +153,7 @@ def _prepare(folder: Path, resume: bool, overwrite: bool, config: TrainConfig) -
     """The committed state to resume from ({} for a fresh run, in an emptied folder if asked)."""
     used = (folder / STATE_FILE).exists() or (folder / LATEST).exists()
     if resume and used:
+        remove_partial_files(folder)
         state = read_state(folder)
         link_latest(folder, state)  # a kill between the state and its link left latest.zip behind
         return state
@@ -222,7 +227,6 @@ def _save_on_the_way_out(model: PPO, folder: Path, parts: list[Any], error: Base
     try:
         save_checkpoint(model, folder, parts)
     except Diverged as diverged:
-        print(f"{diverged}; kept the last good checkpoint, {folder / LATEST}", file=sys.stderr)
         if not isinstance(error, Diverged):
             raise diverged from error
 
@@ -269,7 +273,8 @@ def main(argv: list[str] | None = None) -> int:
         )
         return 130
     except Diverged as error:
-        print(f"error: {error}; kept the last good checkpoint in {folder}", file=sys.stderr)
+        good = json.loads((folder / STATE_FILE).read_text())["checkpoint"]
+        print(f"error: {error}; kept the last good checkpoint, {folder / good}", file=sys.stderr)
         return 1
     except (FileNotFoundError, FileExistsError, ConfigError, BrokenRun, RunLocked) as error:
         parser.error(str(error))

@@ -68,7 +68,7 @@ TRAIN_CONFIGS = [
     (SMOKE + 'mode = "coop"\n', "mode = 'coop' is not allowed: one of scripted, selfplay"),
     ('fight = "moon"\n', "fight = 'moon' is not allowed: unknown config 'moon'"),
     (SMOKE + "total_steps = 5\n", "unknown key 'total_steps'"),
-    (SMOKE + 'init = 5\n', "init must be a string"),
+    (SMOKE + "init = 5\n", "init must be a string"),
     ('total_timesteps = 0\nfight = "small"\n', "total_timesteps = 0 is not allowed: must be >= 1"),
     ('n_envs = 0\nfight = "small"\n', "n_envs = 0 is not allowed: must be >= 1"),
     ('checkpoint_every = 0\nfight = "small"\n', "checkpoint_every = 0 is not allowed"),
