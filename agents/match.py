@@ -172,7 +172,8 @@ def _replay(parser: argparse.ArgumentParser, args: argparse.Namespace) -> int:
         "seed": replay.seed,
         "steps": record.steps,
         "winner": record.winner,
-        "matches_recording": bool(replay.result),
+        "matches_recording": bool(replay.result or replay.digests),
+        "checked": "every step" if replay.digests else ("the result" if replay.result else "none"),
         "result": {"health": record.health, "stocks": record.stocks, "positions": record.positions},
     }
     if args.record:
@@ -186,7 +187,13 @@ def _replay(parser: argparse.ArgumentParser, args: argparse.Namespace) -> int:
             f"{replay.names[1]} (fighter_1), "
             f"config {replay.config.name}, seed {replay.seed}\n"
             f"{record.steps} steps, winner {winner}; "
-            + ("the playback matches the recording" if replay.result else "no result to check")
+            + (
+                "the playback matches the recording at every step"
+                if replay.digests
+                else "the playback matches the recorded result (a version 1 replay: no digests)"
+                if replay.result
+                else "nothing recorded to check against"
+            )
         )
         if args.record:
             print(f"recording: {args.record}")
