@@ -136,7 +136,10 @@ def read_state(folder: Path) -> dict[str, Any]:
     except (OSError, json.JSONDecodeError) as error:
         raise BrokenRun(f"--resume: cannot read {path}: {error}") from None
     if not isinstance(state, dict) or not isinstance(state.get("sha256"), dict):
-        raise BrokenRun(f"--resume: {path} is not a train state (no sha256 table)")
+        raise BrokenRun(
+            f"--resume: {path} has no sha256 table (an older vooga_env's run?): --overwrite "
+            "starts over"
+        )
     for key in ("checkpoint", "normalizer"):
         if key in state and state[key] not in state["sha256"]:
             raise BrokenRun(f"--resume: {path}: {key} {state[key]!r} has no sha256")

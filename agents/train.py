@@ -3,10 +3,14 @@
     python -m agents.train [--config default] [--out runs/NAME] [--seed N] [--steps N] [--resume]
     python -m agents.train --config selfplay --init runs/default/final.zip  # then self-play
 
-Config-driven (`configs/train/*.toml`). Checkpoints every `checkpoint_every` steps into
-`OUT/checkpoints/`, and `OUT/latest.zip` + `OUT/train_state.json` always hold the newest one:
-Ctrl-C or a crash saves them first, and `--resume` continues from them. Logs go to TensorBoard
-when it is installed. The finished model is `OUT/final.zip`; `agents.evaluate` measures it.
+Config-driven (`configs/train/*.toml`), every key checked before any work starts. Checkpoints
+every `checkpoint_every` steps (and at step 0, on Ctrl-C and on a crash) into
+`OUT/checkpoints/`, each file written atomically; `OUT/train_state.json` commits the newest one
+(it names it, with its SHA-256) and `OUT/latest.zip` links to it. `--resume` continues from the
+committed checkpoint, whatever moment a kill came at. A model with NaN or inf weights is never
+saved: the run stops, says what diverged, and keeps the last good checkpoint. One run at a time
+uses OUT (a lock names the pid holding it). Logs go to TensorBoard when it is installed. The
+finished model is `OUT/final.zip`; `agents.evaluate` measures it.
 """
 
 from __future__ import annotations

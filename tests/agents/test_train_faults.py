@@ -41,14 +41,14 @@ def check_committed(folder: Path) -> int:
 
 def kill_and_resume(
     folder: Path, config: str, steps: int, kills: int, seed: int, longest: float
-) -> int:
-    """SIGKILL the run `kills` times at random moments, resuming each time; return the kills that
-    hit a live run (at most `longest` seconds after its start). Then resume once more to the end
-    and check every file the run left."""
+) -> tuple[int, int]:
+    """SIGKILL the run `kills` times at random moments (at most `longest` seconds after its
+    start), resuming each time; return the kills that hit a live run, and those that cut a write
+    short (they left a temp file). Then resume once more to the end and check every file left."""
     rng = random.Random(seed)
     command = [sys.executable, "-m", "agents.train", "--config", config, "--steps", str(steps)]
     command += ["--out", str(folder), "--no-progress"]
-    survived = 0
+    survived = cut = 0
     for _ in range(kills):
         resume = ["--resume"] if folder.exists() else []
         process = subprocess.Popen(
@@ -61,6 +61,7 @@ def kill_and_resume(
         _, stderr = process.communicate(timeout=120)
         assert process.returncode in (0, -signal.SIGKILL), stderr.decode()
         check_committed(folder)
+        cut += bool([*folder.rglob(".*.tmp"), *folder.rglob(".*.link")])
     done = subprocess.run(command + ["--resume"], cwd=ROOT, capture_output=True, timeout=300)
     assert done.returncode == 0, done.stderr.decode()
     assert check_committed(folder) == steps
@@ -69,19 +70,19 @@ def kill_and_resume(
     for path in folder.rglob("*.zip"):
         load_model(path)  # every checkpoint and snapshot whole
     assert not [*folder.rglob("*.tmp"), *folder.rglob("*.link")]
-    return survived
+    return survived, cut
 
 
 def test_sigkill_at_random_points_then_resume_reaches_the_end(tmp_path):
-    survived = kill_and_resume(tmp_path / "run", "smoke", 2048, kills=2, seed=0, longest=6.0)
+    survived, _ = kill_and_resume(tmp_path / "run", "smoke", 2048, kills=2, seed=0, longest=6.0)
     assert survived >= 1
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("config", ["smoke", "smoke_selfplay"])
 def test_many_sigkills_then_resume_reaches_the_end(tmp_path, config):
-    survived = kill_and_resume(tmp_path / "run", config, 8192, kills=25, seed=1, longest=10.0)
-    print(f"{config}: {survived} kills survived")
+    survived, cut = kill_and_resume(tmp_path / "run", config, 8192, 25, seed=1, longest=10.0)
+    print(f"{config}: {survived} kills survived, {cut} of them cut a write short")
     assert survived >= 20
 
 
