@@ -128,7 +128,7 @@ class Replay:
     def from_dict(cls, data: Any, source: str = "replay") -> Replay:
         if not isinstance(data, dict) or data.get("format") != FORMAT:
             raise ReplayError(f'{source}: not a vooga_env replay (no "format": "{FORMAT}")')
-        if data.get("version") not in (1, VERSION):
+        if type(data.get("version")) is not int or data["version"] not in (1, VERSION):
             raise ReplayError(
                 f"{source}: replay version {data.get('version')!r}; this vooga_env reads "
                 f"versions 1 and {VERSION}"

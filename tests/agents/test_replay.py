@@ -97,6 +97,7 @@ def test_playback_renders_the_same_game(game):
     [
         ({"format": "other"}, "not a vooga_env replay"),
         ({"version": 99}, "version 99"),
+        ({"version": True}, "version True"),
         ({"actions": [[0, 10]]}, r"actions\[0\]"),
         ({"actions": [[0]]}, r"actions\[0\]"),
         ({"seed": -1}, "seed"),
@@ -262,8 +263,13 @@ def test_every_result_field_is_type_checked_on_load(game, tmp_path, change, mess
     bad.write_text(json.dumps(data))
     with pytest.raises(ReplayError, match=re.escape(message)):
         Replay.load(bad)
+
+
+def test_a_result_missing_a_field_is_refused(game, tmp_path):
+    _, _, path = game
+    data = json.loads(path.read_text())
     del data["result"]["winner"]
-    if "winner" not in change:
-        bad.write_text(json.dumps(data))
-        with pytest.raises(ReplayError, match="result.winner = 'missing' is not allowed"):
-            Replay.load(bad)
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps(data))
+    with pytest.raises(ReplayError, match="result.winner = 'missing' is not allowed"):
+        Replay.load(bad)
