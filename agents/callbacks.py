@@ -9,10 +9,11 @@ from typing import Any
 import numpy as np
 from stable_baselines3.common.callbacks import BaseCallback, CheckpointCallback
 
-from .checkpoints import CHECKPOINTS, atomic_write, check_finite, save_checkpoint
-from .train_config import CurriculumConfig, SelfPlayConfig
 from vooga_env.elo import START_RATING, update
 from vooga_env.models import FrozenPolicy, load_model
+
+from .checkpoints import CHECKPOINTS, atomic_write, check_finite, save_checkpoint
+from .train_config import CurriculumConfig, SelfPlayConfig
 
 
 def learner_won(info: dict[str, Any]) -> float | None:

@@ -15,11 +15,12 @@ import sys
 from collections.abc import Sequence
 from typing import Any
 
-from . import common
-from .tournament import format_tournament
 from vooga_env.elo import Tournament, round_robin
 from vooga_env.match import wilson_interval
 from vooga_env.policies import SCRIPTED
+
+from . import common
+from .tournament import format_tournament
 
 
 def build_parser() -> argparse.ArgumentParser:

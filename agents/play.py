@@ -18,12 +18,13 @@ import time
 from collections.abc import Callable, Collection, Iterable, Sequence
 from typing import Any
 
-from . import common
 from vooga_env.actions import Action
 from vooga_env.config import FightConfig
 from vooga_env.match import EpisodeRecord, episode_seeds
 from vooga_env.policies import Policy
 from vooga_env.replay import Replay
+
+from . import common
 
 try:
     import pygame

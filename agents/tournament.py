@@ -14,9 +14,10 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from . import common
 from vooga_env.elo import DRAW_SCORE, Tournament, round_robin
 from vooga_env.policies import SCRIPTED
+
+from . import common
 
 DEFAULT_OUT = "runs/tournament.json"
 

@@ -33,6 +33,10 @@ from stable_baselines3.common.env_util import make_vec_env
 from stable_baselines3.common.utils import set_random_seed
 from stable_baselines3.common.vec_env import DummyVecEnv, VecEnv, VecNormalize
 
+from vooga_env.config import ConfigError
+from vooga_env.gym_env import FightEnv
+from vooga_env.models import load_model
+
 from .callbacks import CurriculumCallback, SelfPlayCallback, StateCheckpointCallback
 from .checkpoints import (
     LATEST,
@@ -51,9 +55,6 @@ from .checkpoints import (
     save_checkpoint,
 )
 from .train_config import TrainConfig, load_train_config
-from vooga_env.config import ConfigError
-from vooga_env.gym_env import FightEnv
-from vooga_env.models import load_model
 
 
 def make_envs(config: TrainConfig) -> VecEnv:
