@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections import deque
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -33,11 +34,13 @@ class CurriculumCallback(BaseCallback):
     `review_ratio` of the envs) from a rung drawn among the current and earlier ones.
     """
 
-    def __init__(self, config: CurriculumConfig, seed: int, stage: int = 0) -> None:
+    def __init__(
+        self, config: CurriculumConfig, seed: int, stage: int = 0, results: Sequence[float] = ()
+    ) -> None:
         super().__init__()
         self.config = config
         self.stage = stage
-        self.results: deque[float] = deque(maxlen=config.window)
+        self.results: deque[float] = deque(results, maxlen=config.window)
         self.rng = np.random.default_rng(seed)
 
     def _on_training_start(self) -> None:
@@ -84,7 +87,7 @@ class CurriculumCallback(BaseCallback):
         )
 
     def state(self) -> dict[str, Any]:
-        return {"stage": self.stage, "opponent": self.opponent}
+        return {"stage": self.stage, "opponent": self.opponent, "results": list(self.results)}
 
 
 class SelfPlayCallback(BaseCallback):

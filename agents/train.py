@@ -205,7 +205,9 @@ def _run(
         opponents: Any = SelfPlayCallback(config.selfplay, folder / "snapshots", config.seed, state)
         (folder / "snapshots").mkdir(exist_ok=True)
     else:
-        opponents = CurriculumCallback(config.curriculum, config.seed, state.get("stage", 0))
+        opponents = CurriculumCallback(
+            config.curriculum, config.seed, state.get("stage", 0), state.get("results", ())
+        )
     if not state:
         save_checkpoint(model, folder, [opponents])  # step 0: from here on, --resume always works
     every = max(config.checkpoint_every // config.n_envs, 1)

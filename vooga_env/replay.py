@@ -4,11 +4,13 @@ checked step by step.
 The env is deterministic, so the seed, the whole resolved config and the actions of every step
 are enough to play a game again exactly. A replay carries a digest of every step (BLAKE2b, 8
 bytes, of the step's actions, both observations, the fighters' positions, health and stocks and
-the rewards after it) and one of its header (config, seed, names, policy seeds). `play_back`
-checks the header, then each step as it plays, and raises `ReplayMismatch` naming the first
-step that differs; any edited action is caught at its own step, whether or not it changes the
-game. The final result is checked too. The digests guard against edits and corruption, not
-against someone who recomputes them.
+the rewards after it) and one of its header (the config's name, the seed, the names, the policy
+seeds). `play_back` checks the header, then each step as it plays, and raises `ReplayMismatch`
+naming the first step that differs; any edited action is caught at its own step, whether or not
+it changes the game. The config's values are checked through what they do to the steps, so a
+later vooga_env that adds a config key (with its default) still reads old replays. The final
+result is checked too. The digests guard against edits and corruption, not against someone who
+recomputes them.
 
 The file (format `FORMAT`, version `VERSION`; version 1, without digests, still loads and is
 checked on its result only) holds:
@@ -97,10 +99,10 @@ class Replay:
         return dataclasses.replace(self, header_digest=self.header(), digests=digests)
 
     def header(self) -> str:
-        """The digest of what the game is played from, and who played it."""
+        """The digest of who played, from which seed, under which config's name (the config's
+        values show in the step digests)."""
         text = json.dumps(
-            [dataclasses.asdict(self.config), self.seed, list(self.names), list(self.policy_seeds)],
-            sort_keys=True,
+            [self.config.name, self.seed, list(self.names), list(self.policy_seeds)],
             separators=(",", ":"),
         )
         return hashlib.blake2b(text.encode(), digest_size=DIGEST_BYTES).hexdigest()
@@ -189,8 +191,8 @@ def play_back(
     """
     if check and replay.digests and replay.header() != replay.header_digest:
         raise ReplayMismatch(
-            "the header differs from the recording: its config, seed, names or policy seeds "
-            "were changed"
+            "the header differs from the recording: its config name, seed, names or policy "
+            "seeds were changed"
         )
     record = _play(
         replay, render_mode, record_observations, record_frames, check, step_hook, digests=None

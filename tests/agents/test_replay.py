@@ -273,3 +273,14 @@ def test_a_result_missing_a_field_is_refused(game, tmp_path):
     bad.write_text(json.dumps(data))
     with pytest.raises(ReplayError, match="result.winner = 'missing' is not allowed"):
         Replay.load(bad)
+
+
+def test_an_edited_config_value_is_caught_at_the_first_step_it_changes(game, tmp_path):
+    _, _, path = game
+    data = json.loads(path.read_text())
+    data["config"]["physics"]["gravity"] = 0.003
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps(data))
+    with pytest.raises(ReplayMismatch, match=r"step \d+ differs from the recording") as mismatch:
+        play_back(Replay.load(bad))
+    assert mismatch.value.step is not None

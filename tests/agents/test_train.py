@@ -218,3 +218,20 @@ def test_torch_is_the_pinned_cpu_build():
 
     pinned = (ROOT / "constraints.txt").read_text().split("torch==")[1].split()[0]
     assert torch.__version__.split("+")[0] == pinned
+
+
+def test_resume_keeps_the_curriculums_recent_results(tmp_path):
+    (tmp_path / "short.toml").write_text("max_cycles = 60\n")  # games that end within the run
+    path = tmp_path / "run.toml"
+    path.write_text(
+        f'fight = "{tmp_path / "short.toml"}"\ntotal_timesteps = 512\nn_envs = 2\n'
+        "checkpoint_every = 512\n[ppo]\nn_steps = 256\nbatch_size = 256\nn_epochs = 1\n"
+        '[curriculum]\nladder = ["idle", "random"]\nwindow = 50\n'
+    )
+    out = tmp_path / "out"
+    train(load_train_config(path), out, progress=False)
+    before = json.loads((out / "train_state.json").read_text())
+    assert before["results"]  # some games ended: their scores are what promotion is judged on
+    train(load_train_config(path), out, resume=True, progress=False)
+    after = json.loads((out / "train_state.json").read_text())
+    assert after["results"] == before["results"] and after["stage"] == before["stage"]
