@@ -169,7 +169,7 @@ def _prepare(folder: Path, resume: bool, overwrite: bool, config: TrainConfig) -
             f"{folder} holds a run already: --resume continues it, --overwrite starts over "
             "(deleting it), or pick another --out"
         )
-    elif overwrite:
+    elif used:  # --overwrite: only a folder that holds a run is emptied (never `--out .`)
         for path in folder.iterdir():
             if path.name == LOCK_FILE:  # ours now
                 continue

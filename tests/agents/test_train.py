@@ -55,6 +55,12 @@ def test_a_fresh_run_never_overwrites_an_old_one_unless_told(tmp_path, capsys):
     assert exit_info.value.code == 2 and "holds a run already" in capsys.readouterr().err
     assert main([*argv, "--overwrite"]) == 0
     assert not stale.exists()  # started over: nothing of the old run is left to mix in
+    mine = tmp_path / "elsewhere" / "notes.txt"
+    mine.parent.mkdir()
+    mine.write_text("not a run's")
+    again = ["--steps", "512", "--out", str(mine.parent), "--no-progress", "--overwrite"]
+    assert main([*argv[:2], *again]) == 0
+    assert mine.read_text() == "not a run's"  # a folder without a run is not emptied
 
 
 def test_init_starts_from_a_saved_models_weights_or_says_why_not(tmp_path):
