@@ -102,18 +102,21 @@ def load_init(config: TrainConfig) -> Any:
         check_finite(model, model.num_timesteps)
     except (FileNotFoundError, ValueError, Diverged) as error:  # not a usable model
         raise ConfigError(f"init = {config.init!r}: {error}") from error
+    extractor = model.policy.mlp_extractor
+    expected = list(config.ppo.net_arch)
+    for head, layers in (("policy", extractor.policy_net), ("value", extractor.value_net)):
+        sizes = [layer.out_features for layer in layers if isinstance(layer, torch.nn.Linear)]
+        if sizes != expected:
+            raise ConfigError(
+                f"init = {config.init!r}: its {head} network has layers {sizes}, which do not "
+                f"fit net_arch = {expected}"
+            )
     return model
 
 
-def start_from(model: PPO, saved: Any, config: TrainConfig) -> None:
+def start_from(model: PPO, saved: Any) -> None:
     """Copy a saved model's weights into `model` (its own hyperparameters stay the config's)."""
-    try:
-        model.policy.load_state_dict(saved.policy.state_dict())
-    except RuntimeError as error:
-        raise ConfigError(
-            f"init = {config.init!r}: its network does not fit net_arch = "
-            f"{list(config.ppo.net_arch)} ({str(error).splitlines()[0]})"
-        ) from error
+    model.policy.load_state_dict(saved.policy.state_dict())
 
 
 class StopAfter(BaseCallback):
@@ -200,7 +203,7 @@ def _run(
     else:
         model = build_model(config, envs, folder)
         if saved is not None:
-            start_from(model, saved, config)
+            start_from(model, saved)
     if config.mode == "selfplay":
         opponents: Any = SelfPlayCallback(config.selfplay, folder / "snapshots", config.seed, state)
         (folder / "snapshots").mkdir(exist_ok=True)

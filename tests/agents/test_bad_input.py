@@ -8,8 +8,10 @@ import zipfile
 import gymnasium as gym
 import numpy as np
 import pytest
+import torch
 
 from agents import evaluate, match, tournament, train
+from vooga_env.actions import Action
 from vooga_env.observations import OBSERVATION_SIZE
 
 SMOKE = 'fight = "small"\ntotal_timesteps = 512\nn_envs = 2\ncheckpoint_every = 256\n'
@@ -99,20 +101,32 @@ def bad_models(tmp_path_factory):
     (folder / "folder.zip").mkdir()
     PPO("MlpPolicy", gym.make("CartPole-v1"), n_steps=64, device="cpu").save(folder / "cart")
     PPO("MlpPolicy", ThreeActions(), n_steps=64, device="cpu").save(folder / "three")
+    narrow = {"net_arch": [8]}
+    PPO("MlpPolicy", FightShaped(), policy_kwargs=narrow, device="cpu").save(folder / "narrow")
+    broken = PPO("MlpPolicy", FightShaped(), device="cpu")
+    with torch.no_grad():
+        broken.policy.value_net.bias[0] = float("inf")
+    broken.save(folder / "broken")
     return folder
 
 
-class ThreeActions(gym.Env):
-    """The fight's observations, but only three actions."""
+class FightShaped(gym.Env):
+    """The fight's observation and action spaces, and nothing else."""
 
     observation_space = gym.spaces.Box(-1.0, 1.0, (OBSERVATION_SIZE,), np.float32)
-    action_space = gym.spaces.Discrete(3)
+    action_space = gym.spaces.Discrete(len(Action))
 
     def reset(self, *, seed=None, options=None):
         return np.zeros(OBSERVATION_SIZE, np.float32), {}
 
     def step(self, action):
         return np.zeros(OBSERVATION_SIZE, np.float32), 0.0, True, False, {}
+
+
+class ThreeActions(FightShaped):
+    """The fight's observations, but only three actions."""
+
+    action_space = gym.spaces.Discrete(3)
 
 
 MODELS = [
@@ -139,6 +153,21 @@ def test_a_bad_model_is_refused_by_every_tool(bad_models, name, message, tmp_pat
     ):
         err = usage_error(main, argv, capsys)
         assert message in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize(
+    "name, message",
+    [
+        ("narrow.zip", "its policy network has layers [8], which do not fit net_arch = [64, 64]"),
+        ("broken.zip", "1 non-finite weights, in value_net.bias (1 of 1)"),
+    ],
+)
+def test_a_model_training_cannot_start_from_is_a_usage_error(bad_models, name, message, capsys):
+    model = str(bad_models / name)
+    out = bad_models / "run"
+    err = usage_error(train.main, ["--config", "smoke", "--init", model, "--out", str(out)], capsys)
+    assert f"init = {model!r}" in err and message in err
+    assert not out.exists()
 
 
 @pytest.mark.parametrize(

@@ -71,14 +71,15 @@ def test_init_starts_from_a_saved_models_weights_or_says_why_not(tmp_path):
     config = load_train_config("smoke", total_timesteps=512)
     saved = train(config, tmp_path / "first", progress=False)
     model = build_model(config, make_envs(config), tmp_path)
-    start_from(model, load_model(saved), config)
+    start_from(model, load_model(saved))
     expected = load_model(saved).policy.state_dict()
     for name, tensor in model.policy.state_dict().items():
         assert torch.equal(tensor, expected[name]), name
     wider = load_train_config("smoke", init=str(saved))
     wider = dataclasses.replace(wider, ppo=dataclasses.replace(wider.ppo, net_arch=(8,)))
-    with pytest.raises(ConfigError, match="init = .*does not fit net_arch = \\[8\\]"):
+    with pytest.raises(ConfigError, match=r"init = .*layers \[64, 64\], .*net_arch = \[8\]"):
         train(wider, tmp_path / "second", progress=False)
+    assert not (tmp_path / "second").exists()  # refused before any work
     with pytest.raises(ConfigError, match="init = 'nowhere.zip': no saved model"):
         train(load_train_config("smoke", init="nowhere.zip"), tmp_path / "third", progress=False)
 
