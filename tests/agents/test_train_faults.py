@@ -39,12 +39,30 @@ def check_committed(folder: Path) -> int:
     return state["num_timesteps"]
 
 
+def wait_to_kill(process: subprocess.Popen, folder: Path, rng: random.Random) -> None:
+    """Sleep to a random moment of the run: a quarter of the time while it starts (imports, the
+    resume's checks and repairs), else just after it commits a checkpoint, as it trains on and
+    writes the next one (the moment does not depend on how fast the machine is)."""
+    if rng.random() < 0.25:
+        time.sleep(rng.uniform(0.0, 2.0))
+        return
+
+    def commit() -> tuple[int, int] | None:
+        state = folder / STATE_FILE
+        return (state.stat().st_ino, state.stat().st_mtime_ns) if state.exists() else None
+
+    before, deadline = commit(), time.monotonic() + 120
+    while commit() == before and process.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.02)
+    time.sleep(rng.uniform(0.0, 1.5))
+
+
 def kill_and_resume(
-    folder: Path, config: str, steps: int, kills: int, seed: int, longest: float
+    folder: Path, config: str, steps: int, kills: int, seed: int
 ) -> tuple[int, int]:
-    """SIGKILL the run `kills` times at random moments (at most `longest` seconds after its
-    start), resuming each time; return the kills that hit a live run, and those that cut a write
-    short (they left a temp file). Then resume once more to the end and check every file left."""
+    """SIGKILL the run `kills` times at random moments, resuming each time; return the kills that
+    hit a live run, and those that cut a write short (they left a temp file). Then resume once
+    more to the end and check every file the run left."""
     rng = random.Random(seed)
     command = [sys.executable, "-m", "agents.train", "--config", config, "--steps", str(steps)]
     command += ["--out", str(folder), "--no-progress"]
@@ -54,7 +72,7 @@ def kill_and_resume(
         process = subprocess.Popen(
             command + resume, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE
         )
-        time.sleep(rng.uniform(0.5, longest))
+        wait_to_kill(process, folder, rng)
         if process.poll() is None:
             process.send_signal(signal.SIGKILL)
             survived += 1
@@ -74,14 +92,14 @@ def kill_and_resume(
 
 
 def test_sigkill_at_random_points_then_resume_reaches_the_end(tmp_path):
-    survived, _ = kill_and_resume(tmp_path / "run", "smoke", 2048, kills=2, seed=0, longest=6.0)
+    survived, _ = kill_and_resume(tmp_path / "run", "smoke", 4096, kills=2, seed=0)
     assert survived >= 1
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("config", ["smoke", "smoke_selfplay"])
 def test_many_sigkills_then_resume_reaches_the_end(tmp_path, config):
-    survived, cut = kill_and_resume(tmp_path / "run", config, 8192, 25, seed=1, longest=10.0)
+    survived, cut = kill_and_resume(tmp_path / "run", config, 8192, kills=25, seed=1)
     print(f"{config}: {survived} kills survived, {cut} of them cut a write short")
     assert survived >= 20
 
