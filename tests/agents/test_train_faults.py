@@ -205,3 +205,18 @@ def test_a_diverged_model_is_not_saved_over_a_good_one(tmp_path):
     with pytest.raises(Diverged, match=r"3 non-finite weights, in mlp_extractor\.policy_net\.0"):
         save_checkpoint(model, tmp_path, [])
     assert {path: sha256(path) for path in tmp_path.rglob("*") if path.is_file()} == before
+
+
+def test_a_write_that_fails_half_way_leaves_the_old_file_whole(tmp_path):
+    from vooga_env.files import atomic_write, atomic_write_text
+
+    path = atomic_write_text(tmp_path / "report.json", "old, whole")
+
+    def half_then_fail(temporary: str) -> None:
+        Path(temporary).write_text("new, but on")
+        raise OSError("disk full")
+
+    with pytest.raises(OSError, match="disk full"):
+        atomic_write(path, half_then_fail)
+    assert path.read_text() == "old, whole"
+    assert [p.name for p in tmp_path.iterdir()] == ["report.json"]  # no temp file left behind
