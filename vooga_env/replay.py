@@ -159,7 +159,7 @@ class Replay:
         )
 
     def save(self, path: str | Path) -> Path:
-        """Write the replay as JSON (folders made as needed); returns the path."""
+        """Write the replay as JSON, atomically (folders made as needed); returns the path."""
         return atomic_write_text(
             Path(path), json.dumps(self.to_dict(), separators=(",", ":")) + "\n"
         )
