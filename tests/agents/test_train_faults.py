@@ -40,11 +40,11 @@ def check_committed(folder: Path) -> int:
 
 
 def wait_to_kill(process: subprocess.Popen, folder: Path, rng: random.Random) -> None:
-    """Sleep to a random moment of the run: a quarter of the time while it starts (imports, the
-    resume's checks and repairs), else just after it commits a checkpoint, as it trains on and
-    writes the next one (the moment does not depend on how fast the machine is)."""
-    if rng.random() < 0.25:
-        time.sleep(rng.uniform(0.0, 2.0))
+    """Sleep to a random moment of the run: a third of the time in its first seconds (imports,
+    the resume's checks and repairs, the first checkpoint), else in the seconds after it commits
+    a checkpoint, as it trains on and writes the next one."""
+    if rng.random() < 1 / 3:
+        time.sleep(rng.uniform(0.0, 8.0))
         return
 
     def commit() -> tuple[int, int] | None:
@@ -54,7 +54,7 @@ def wait_to_kill(process: subprocess.Popen, folder: Path, rng: random.Random) ->
     before, deadline = commit(), time.monotonic() + 120
     while commit() == before and process.poll() is None and time.monotonic() < deadline:
         time.sleep(0.02)
-    time.sleep(rng.uniform(0.0, 1.5))
+    time.sleep(rng.uniform(0.0, 3.0))
 
 
 def kill_and_resume(
