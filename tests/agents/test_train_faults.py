@@ -39,12 +39,14 @@ def check_committed(folder: Path) -> int:
     return state["num_timesteps"]
 
 
-def wait_to_kill(process: subprocess.Popen, folder: Path, rng: random.Random) -> None:
-    """Sleep to a random moment of the run: a third of the time in its first seconds (imports,
-    the resume's checks and repairs, the first checkpoint), else in the seconds after it commits
-    a checkpoint, as it trains on and writes the next one."""
+def wait_to_kill(
+    process: subprocess.Popen, folder: Path, rng: random.Random, spread: float
+) -> None:
+    """Sleep to a random moment of the run: a third of the time in its first `spread` seconds
+    (imports, the resume's checks and repairs, the first checkpoint), else in the `spread / 2`
+    seconds after it commits a checkpoint, as it trains on and writes the next one."""
     if rng.random() < 1 / 3:
-        time.sleep(rng.uniform(0.0, 8.0))
+        time.sleep(rng.uniform(0.0, spread))
         return
 
     def commit() -> tuple[int, int] | None:
@@ -54,11 +56,11 @@ def wait_to_kill(process: subprocess.Popen, folder: Path, rng: random.Random) ->
     before, deadline = commit(), time.monotonic() + 120
     while commit() == before and process.poll() is None and time.monotonic() < deadline:
         time.sleep(0.02)
-    time.sleep(rng.uniform(0.0, 3.0))
+    time.sleep(rng.uniform(0.0, spread / 2))
 
 
 def kill_and_resume(
-    folder: Path, config: str, steps: int, kills: int, seed: int
+    folder: Path, config: str, steps: int, kills: int, seed: int, spread: float
 ) -> tuple[int, int]:
     """SIGKILL the run `kills` times at random moments, resuming each time; return the kills that
     hit a live run, and those that cut a write short (they left a temp file). Then resume once
@@ -72,7 +74,7 @@ def kill_and_resume(
         process = subprocess.Popen(
             command + resume, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE
         )
-        wait_to_kill(process, folder, rng)
+        wait_to_kill(process, folder, rng, spread)
         if process.poll() is None:
             process.send_signal(signal.SIGKILL)
             survived += 1
@@ -92,14 +94,14 @@ def kill_and_resume(
 
 
 def test_sigkill_at_random_points_then_resume_reaches_the_end(tmp_path):
-    survived, _ = kill_and_resume(tmp_path / "run", "smoke", 4096, kills=2, seed=0)
+    survived, _ = kill_and_resume(tmp_path / "run", "smoke", 4096, kills=2, seed=0, spread=3.0)
     assert survived >= 1
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("config", ["smoke", "smoke_selfplay"])
 def test_many_sigkills_then_resume_reaches_the_end(tmp_path, config):
-    survived, cut = kill_and_resume(tmp_path / "run", config, 16384, kills=25, seed=1)
+    survived, cut = kill_and_resume(tmp_path / "run", config, 16384, kills=25, seed=1, spread=6.0)
     print(f"{config}: {survived} kills survived, {cut} of them cut a write short")
     assert survived >= 15  # the others came after that run had ended
 
