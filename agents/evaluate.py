@@ -51,6 +51,8 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    if args.out:
+        common.check_output(parser, "--out", args.out)
     config = common.fight_config(parser, args)
     candidate = common.policy(parser, args.model)
     opponents = {name: common.policy(parser, name) for name in dict.fromkeys(args.opponents)}

@@ -13,6 +13,10 @@ from vooga_env.observations import OBSERVATION_SIZE
 from vooga_env.policies import Policy
 
 
+class ModelError(ValueError):
+    """A file that is not a saved model this fight can use; the message names the file."""
+
+
 def load_model(path: str | Path) -> Any:
     """A saved PPO model, checked against the fight's observation and action spaces."""
     try:
@@ -24,16 +28,21 @@ def load_model(path: str | Path) -> Any:
     path = Path(path)
     if not path.is_file() and not path.with_suffix(".zip").is_file():
         raise FileNotFoundError(f"no saved model at {path}")
-    model = PPO.load(path, device="cpu")
+    try:
+        model = PPO.load(path, device="cpu")
+    except Exception as error:  # SB3 raises many kinds (assert, KeyError, BadZipFile, ...)
+        raise ModelError(
+            f"{path} is not a saved PPO model: {type(error).__name__}: {error}"
+        ) from None
     observation_shape = getattr(model.observation_space, "shape", None)
     if observation_shape != (OBSERVATION_SIZE,):
-        raise ValueError(
+        raise ModelError(
             f"model {path} expects observations of shape {observation_shape}, "
             f"the fight gives ({OBSERVATION_SIZE},)"
         )
     actions = getattr(model.action_space, "n", None)
     if actions != len(Action):
-        raise ValueError(f"model {path} has {actions} actions, the fight has {len(Action)}")
+        raise ModelError(f"model {path} has {actions} actions, the fight has {len(Action)}")
     return model
 
 
