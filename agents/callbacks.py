@@ -2,9 +2,8 @@
 
 from __future__ import annotations
 
-import json
-import os
 from collections import deque
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -14,10 +13,8 @@ from stable_baselines3.common.callbacks import BaseCallback, CheckpointCallback
 from vooga_env.elo import START_RATING, update
 from vooga_env.models import FrozenPolicy, load_model
 
+from .checkpoints import CHECKPOINTS, atomic_write, check_finite, save_checkpoint
 from .train_config import CurriculumConfig, SelfPlayConfig
-
-STATE_FILE = "train_state.json"
-NORMALIZER_FILE = "vec_normalize.pkl"  # VecNormalize's running statistics, for --resume
 
 
 def learner_won(info: dict[str, Any]) -> float | None:
@@ -37,11 +34,13 @@ class CurriculumCallback(BaseCallback):
     `review_ratio` of the envs) from a rung drawn among the current and earlier ones.
     """
 
-    def __init__(self, config: CurriculumConfig, seed: int, stage: int = 0) -> None:
+    def __init__(
+        self, config: CurriculumConfig, seed: int, stage: int = 0, results: Sequence[float] = ()
+    ) -> None:
         super().__init__()
         self.config = config
         self.stage = stage
-        self.results: deque[float] = deque(maxlen=config.window)
+        self.results: deque[float] = deque(results, maxlen=config.window)
         self.rng = np.random.default_rng(seed)
 
     def _on_training_start(self) -> None:
@@ -88,7 +87,7 @@ class CurriculumCallback(BaseCallback):
         )
 
     def state(self) -> dict[str, Any]:
-        return {"stage": self.stage, "opponent": self.opponent}
+        return {"stage": self.stage, "opponent": self.opponent, "results": list(self.results)}
 
 
 class SelfPlayCallback(BaseCallback):
@@ -138,8 +137,8 @@ class SelfPlayCallback(BaseCallback):
 
     def _snapshot(self) -> None:
         name = f"snapshot_{self.num_timesteps}"
-        path = self.folder / f"{name}.zip"
-        self.model.save(path)
+        check_finite(self.model, self.num_timesteps)  # a diverged snapshot would poison the pool
+        atomic_write(self.folder / f"{name}.zip", self.model.save)
         self.pool.append(name)
         self.ratings.setdefault(name, self.ratings["learner"])
         self.pool = self.pool[-self.config.window :]
@@ -176,34 +175,18 @@ class SelfPlayCallback(BaseCallback):
 
 
 class StateCheckpointCallback(CheckpointCallback):
-    """SB3's CheckpointCallback, plus the run's state and a `latest.zip` written atomically."""
+    """SB3's CheckpointCallback (its schedule and names), saving through `save_checkpoint`:
+    atomic files, committed in the run's state, never a non-finite model."""
 
     def __init__(self, save_freq: int, folder: Path, parts: list[Any]) -> None:
-        super().__init__(
-            save_freq=save_freq, save_path=str(folder / "checkpoints"), name_prefix="ppo"
-        )
+        super().__init__(save_freq, str(folder / CHECKPOINTS), name_prefix="ppo")
         self.folder = folder
         self.parts = parts
 
     def _on_step(self) -> bool:
         if self.n_calls % self.save_freq == 0:
             save_checkpoint(self.model, self.folder, self.parts)
-        return super()._on_step()
+        return True
 
-
-def save_checkpoint(model: Any, folder: Path, parts: list[Any]) -> None:
-    """Write latest.zip, the reward normaliser's statistics (if any) and train_state.json, each
-    atomically, so that a crash mid-write leaves the previous checkpoint whole."""
-    folder.mkdir(parents=True, exist_ok=True)
-    temporary = folder / "latest.tmp.zip"
-    model.save(temporary)
-    os.replace(temporary, folder / "latest.zip")
-    normalizer = model.get_vec_normalize_env()
-    if normalizer is not None:
-        normalizer.save(str(folder / f"{NORMALIZER_FILE}.tmp"))
-        os.replace(folder / f"{NORMALIZER_FILE}.tmp", folder / NORMALIZER_FILE)
-    state = {"num_timesteps": int(model.num_timesteps)}
-    for part in parts:
-        state.update(part.state())
-    (folder / f"{STATE_FILE}.tmp").write_text(json.dumps(state, indent=2))
-    os.replace(folder / f"{STATE_FILE}.tmp", folder / STATE_FILE)
+    def _on_rollout_end(self) -> None:
+        check_finite(self.model, self.num_timesteps)  # stop at the first bad update, not later

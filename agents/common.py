@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from vooga_env.config import ConfigError, FightConfig, load_config
+from vooga_env.files import atomic_write_text
 from vooga_env.match import EpisodeRecord
 from vooga_env.policies import SCRIPTED, Policy, make_policy
 
@@ -111,11 +112,21 @@ def table(headers: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
     return "\n".join([line([str(h) for h in headers]), rule, *(line(row) for row in cells)])
 
 
-def write_json(path: str | Path, data: Any) -> Path:
+def check_output(parser: argparse.ArgumentParser, flag: str, path: str | Path) -> None:
+    """A usage error now, before any game is played, if `path` cannot be written later."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(data, indent=2) + "\n")
-    return path
+    if path.is_dir():
+        parser.error(f"{flag} {path} is a folder; give a file name")
+    folder = next((parent for parent in path.parents if parent.exists()), Path("."))
+    if not folder.is_dir():
+        parser.error(f"{flag} {path}: {folder} is a file, not a folder")
+    if not os.access(folder, os.W_OK):
+        parser.error(f"{flag} {path}: cannot write in {folder}")
+
+
+def write_json(path: str | Path, data: Any) -> Path:
+    """Write JSON atomically (temp file, fsync, rename): a reader never sees half a report."""
+    return atomic_write_text(Path(path), json.dumps(data, indent=2) + "\n")
 
 
 def print_json(data: Any) -> None:

@@ -35,13 +35,27 @@ from stable_baselines3.common.utils import set_random_seed
 from stable_baselines3.common.vec_env import VecNormalize
 
 from vooga_env.config import CONFIG_DIR, ConfigError, build_config, load_config, read_toml
+from vooga_env.files import atomic_write, atomic_write_text
 from vooga_env.models import BatchPolicy, FrozenPolicy, load_model
 from vooga_env.policies import SCRIPTED
 from vooga_env.vector.opponents import VectorOpponent
 from vooga_env.vector.sb3 import FightVecEnv
 
 from . import common
-from .callbacks import NORMALIZER_FILE, STATE_FILE, StateCheckpointCallback, save_checkpoint
+from .callbacks import StateCheckpointCallback
+from .checkpoints import (
+    LATEST,
+    LOCK_FILE,
+    STATE_FILE,
+    BrokenRun,
+    Diverged,
+    RunLock,
+    RunLocked,
+    link_latest,
+    read_state,
+    remove_partial_files,
+    save_checkpoint,
+)
 from .exploit import make_learner
 from .league_pool import WEIGHTINGS, Pool, PoolOpponent
 from .train import StopAfter
@@ -175,7 +189,7 @@ class LeagueCallback(BaseCallback):
         """Save the learner as it is now and add it to the pool."""
         name = f"snapshot_{steps}"
         (self.folder / "snapshots").mkdir(parents=True, exist_ok=True)
-        model.save(self.folder / "snapshots" / f"{name}.zip")
+        atomic_write(self.folder / "snapshots" / f"{name}.zip", model.save)
         self._join("snapshots", name)
         self.last_save = steps
 
@@ -189,7 +203,7 @@ class LeagueCallback(BaseCallback):
         exploiter.learn(self.league.exploiter_steps)
         name = f"exploiter_{self.num_timesteps}"
         (self.folder / "exploiters").mkdir(parents=True, exist_ok=True)
-        exploiter.save(self.folder / "exploiters" / f"{name}.zip")
+        atomic_write(self.folder / "exploiters" / f"{name}.zip", exploiter.save)
         self._join("exploiters", name)
         self.last_exploiter = self.num_timesteps
 
@@ -212,9 +226,9 @@ def build(config: LeagueRunConfig, folder: Path, state: dict[str, Any], resume: 
     if ppo.normalize_reward:
         envs = VecNormalize(envs, norm_obs=False, norm_reward=True, gamma=ppo.gamma)
     if resume:
-        if isinstance(envs, VecNormalize) and (folder / NORMALIZER_FILE).is_file():
-            envs = VecNormalize.load(str(folder / NORMALIZER_FILE), envs.venv)
-        model = PPO.load(folder / "latest.zip", env=envs, device="cpu")
+        if isinstance(envs, VecNormalize) and "normalizer" in state:
+            envs = VecNormalize.load(str(folder / state["normalizer"]), envs.venv)
+        model = PPO.load(folder / state["checkpoint"], env=envs, device="cpu")
     else:
         tensorboard = str(folder / "tb") if importlib.util.find_spec("tensorboard") else None
         model = PPO(
@@ -253,26 +267,59 @@ def train_league(
     minutes: float | None = None,
     overwrite: bool = False,
 ) -> Path:
-    """Run (or continue) a league for at most `minutes`; returns the final model's path."""
-    if not resume and (folder / "latest.zip").exists():
-        if not overwrite:
-            raise FileExistsError(
-                f"{folder} holds a run already: --resume continues it, --overwrite starts over "
-                "(deleting it), or pick another --out"
-            )
-        shutil.rmtree(folder)
-    if resume and not (folder / "latest.zip").is_file():
-        raise FileNotFoundError(f"--resume: no checkpoint at {folder / 'latest.zip'}")
+    """Run (or continue) a league for at most `minutes`; returns the final model's path.
+
+    The folder is locked and checkpointed as agents.train does it (`agents.checkpoints`); a
+    fresh run refuses a folder that holds one, unless `overwrite`.
+    """
+    if resume and not folder.is_dir():
+        raise FileNotFoundError(f"--resume: no run folder at {folder}")
+    with RunLock(folder):
+        state = _prepare(folder, resume, overwrite, config)
+        return _run(config, folder, state, progress, minutes or config.minutes)
+
+
+def _prepare(
+    folder: Path, resume: bool, overwrite: bool, config: LeagueRunConfig
+) -> dict[str, Any]:
+    """The committed state to resume from ({} for a fresh run, in an emptied folder if asked)."""
+    used = (folder / STATE_FILE).exists() or (folder / LATEST).exists()
+    if resume:
+        if not used:
+            raise FileNotFoundError(f"--resume: no checkpoint in {folder}")
+        remove_partial_files(folder)
+        state = read_state(folder)
+        link_latest(folder, state)
+        return state
+    if used and not overwrite:
+        raise FileExistsError(
+            f"{folder} holds a run already: --resume continues it, --overwrite starts over "
+            "(deleting it), or pick another --out"
+        )
+    if used:
+        for path in folder.iterdir():
+            if path.name == LOCK_FILE:
+                continue
+            if path.is_dir() and not path.is_symlink():
+                shutil.rmtree(path)
+            else:
+                path.unlink()
+    atomic_write_text(
+        folder / "league_config.json", json.dumps(dataclasses.asdict(config), indent=2)
+    )
+    return {}
+
+
+def _run(
+    config: LeagueRunConfig, folder: Path, state: dict[str, Any], progress: bool, minutes: float
+) -> Path:
     torch.set_num_threads(1)
     set_random_seed(config.seed)
-    folder.mkdir(parents=True, exist_ok=True)
-    state = json.loads((folder / STATE_FILE).read_text()) if resume else {}
-    if not resume:
-        (folder / "league_config.json").write_text(json.dumps(dataclasses.asdict(config), indent=2))
-    model, league = build(config, folder, state, resume)
+    model, league = build(config, folder, state, bool(state))
+    if not state:
+        save_checkpoint(model, folder, [league])  # step 0: from here on, --resume works
     every = max(config.checkpoint_every // config.fights, 1)
     callbacks = [league, StateCheckpointCallback(every, folder, [league])]
-    minutes = minutes or config.minutes
     callbacks += [StopAfter(minutes)] if minutes else []
     remaining = config.total_timesteps - model.num_timesteps
     try:
@@ -280,16 +327,15 @@ def train_league(
             model.learn(
                 remaining,
                 callback=CallbackList(callbacks),
-                reset_num_timesteps=not resume,
+                reset_num_timesteps=not state,
                 progress_bar=progress,
             )
-    except BaseException:
-        save_checkpoint(model, folder, [league])
+    except BaseException as error:
+        if not isinstance(error, Diverged):  # a diverged model is never saved
+            save_checkpoint(model, folder, [league])
         raise
     save_checkpoint(model, folder, [league])
-    final = folder / "final.zip"
-    model.save(final)
-    return final
+    return atomic_write(folder / "final.zip", model.save)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -319,7 +365,10 @@ def main(argv: list[str] | None = None) -> int:
             file=sys.stderr,
         )
         return 130
-    except (FileNotFoundError, FileExistsError, ConfigError) as error:
+    except Diverged as error:
+        print(f"stopped: {error}", file=sys.stderr)
+        return 1
+    except (FileNotFoundError, FileExistsError, ConfigError, BrokenRun, RunLocked) as error:
         parser.error(str(error))
     print(format_pool(json.loads((folder / STATE_FILE).read_text())))
     print(f"trained: {final}")

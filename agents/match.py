@@ -5,8 +5,9 @@
     python -m agents.match --replay first.json --render
 
 Each side is a scripted fighter (idle, random, rush, turtle, zoner, edge_guard) or a saved model
-(.zip). Seats are swapped every game and both games of a pair share their seeds, so neither side
-is favoured. `--record` (.gif or .mp4) and `--save-replay` keep the first game.
+(.zip, or an exported fighter .npz). Seats are swapped every game and both games of a pair share
+their seeds, so neither side is favoured. `--record` (.gif or .mp4) and `--save-replay` keep the
+first game.
 """
 
 from __future__ import annotations
@@ -58,7 +59,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         except (ValueError, ImportError) as error:
             parser.error(f"--record: {error}")
     if args.record_scale < 1:
-        parser.error("--record-scale must be >= 1")
+        parser.error(f"--record-scale {args.record_scale} is not allowed: must be >= 1")
+    for flag, path in (("--record", args.record), ("--save-replay", args.save_replay)):
+        if path:
+            common.check_output(parser, flag, path)
     if args.replay:
         if args.policies:
             parser.error("--replay plays a file back; give no policies with it")
@@ -170,7 +174,8 @@ def _replay(parser: argparse.ArgumentParser, args: argparse.Namespace) -> int:
         "seed": replay.seed,
         "steps": record.steps,
         "winner": record.winner,
-        "matches_recording": bool(replay.result),
+        "matches_recording": bool(replay.result or replay.digests),
+        "checked": "every step" if replay.digests else ("the result" if replay.result else "none"),
         "result": {"health": record.health, "stocks": record.stocks, "positions": record.positions},
     }
     if args.record:
@@ -184,7 +189,13 @@ def _replay(parser: argparse.ArgumentParser, args: argparse.Namespace) -> int:
             f"{replay.names[1]} (fighter_1), "
             f"config {replay.config.name}, seed {replay.seed}\n"
             f"{record.steps} steps, winner {winner}; "
-            + ("the playback matches the recording" if replay.result else "no result to check")
+            + (
+                "the playback matches the recording at every step"
+                if replay.digests
+                else "the playback matches the recorded result (a version 1 replay: no digests)"
+                if replay.result
+                else "nothing recorded to check against"
+            )
         )
         if args.record:
             print(f"recording: {args.record}")

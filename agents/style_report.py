@@ -12,7 +12,7 @@ from typing import Any
 from vooga_env.actions import Action
 from vooga_env.config import FightConfig
 from vooga_env.match import run_match
-from vooga_env.models import FrozenPolicy
+from vooga_env.models import MLPPolicy
 from vooga_env.policies import Policy
 from vooga_env.style import ATTACKS, ENDINGS, StyleStats
 
@@ -32,7 +32,7 @@ def add_style_options(parser: argparse.ArgumentParser) -> None:
 
 def plays(candidate: Policy, args: argparse.Namespace) -> dict[str, Policy]:
     """The ways the candidate plays: a saved model sampled and/or argmax, a scripted one as is."""
-    if not isinstance(candidate, FrozenPolicy):
+    if not isinstance(candidate, MLPPolicy):
         return {"scripted": candidate}
     chosen = [play for play in PLAYS if getattr(args, play)] or list(PLAYS)
     versions = {}

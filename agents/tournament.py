@@ -44,6 +44,8 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    if args.out:
+        common.check_output(parser, "--out", args.out)
     config = common.fight_config(parser, args)
     entrants = [common.policy(parser, spec) for spec in [*args.scripted, *args.models]]
     if len(entrants) < 2:

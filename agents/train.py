@@ -3,10 +3,14 @@
     python -m agents.train [--config default] [--out runs/NAME] [--seed N] [--steps N] [--resume]
     python -m agents.train --config selfplay --init runs/default/final.zip  # then self-play
 
-Config-driven (`configs/train/*.toml`). Checkpoints every `checkpoint_every` steps into
-`OUT/checkpoints/`, and `OUT/latest.zip` + `OUT/train_state.json` always hold the newest one:
-Ctrl-C or a crash saves them first, and `--resume` continues from them. Logs go to TensorBoard
-when it is installed. The finished model is `OUT/final.zip`; `agents.evaluate` measures it.
+Config-driven (`configs/train/*.toml`), every key checked before any work starts. Checkpoints
+every `checkpoint_every` steps (and at step 0, on Ctrl-C and on a crash) into
+`OUT/checkpoints/`, each file written atomically; `OUT/train_state.json` commits the newest one
+(it names it, with its SHA-256) and `OUT/latest.zip` links to it. `--resume` continues from the
+committed checkpoint, whatever moment a kill came at. A model with NaN or inf weights is never
+saved: the run stops, says what diverged, and keeps the last good checkpoint. One run at a time
+uses OUT (a lock names the pid holding it). Logs go to TensorBoard when it is installed. The
+finished model is `OUT/final.zip`; `agents.evaluate` measures it.
 """
 
 from __future__ import annotations
@@ -15,6 +19,7 @@ import argparse
 import dataclasses
 import importlib.util
 import json
+import math
 import shutil
 import sys
 import time
@@ -32,12 +37,21 @@ from vooga_env.config import ConfigError
 from vooga_env.gym_env import FightEnv
 from vooga_env.models import load_model
 
-from .callbacks import (
-    NORMALIZER_FILE,
+from .callbacks import CurriculumCallback, SelfPlayCallback, StateCheckpointCallback
+from .checkpoints import (
+    LATEST,
+    LOCK_FILE,
     STATE_FILE,
-    CurriculumCallback,
-    SelfPlayCallback,
-    StateCheckpointCallback,
+    BrokenRun,
+    Diverged,
+    RunLock,
+    RunLocked,
+    atomic_write,
+    atomic_write_text,
+    check_finite,
+    link_latest,
+    read_state,
+    remove_partial_files,
     save_checkpoint,
 )
 from .train_config import TrainConfig, load_train_config
@@ -79,19 +93,30 @@ def build_model(config: TrainConfig, envs: VecEnv, folder: Path) -> PPO:
     )
 
 
-def start_from(model: PPO, path: str, config: TrainConfig) -> None:
+def load_init(config: TrainConfig) -> Any:
+    """The model `init` names (None for a new network), or a ConfigError saying why not."""
+    if not config.init:
+        return None
+    try:
+        model = load_model(config.init)
+        check_finite(model, model.num_timesteps)
+    except (FileNotFoundError, ValueError, Diverged) as error:  # not a usable model
+        raise ConfigError(f"init = {config.init!r}: {error}") from error
+    extractor = model.policy.mlp_extractor
+    expected = list(config.ppo.net_arch)
+    for head, layers in (("policy", extractor.policy_net), ("value", extractor.value_net)):
+        sizes = [layer.out_features for layer in layers if isinstance(layer, torch.nn.Linear)]
+        if sizes != expected:
+            raise ConfigError(
+                f"init = {config.init!r}: its {head} network has layers {sizes}, which do not "
+                f"fit net_arch = {expected}"
+            )
+    return model
+
+
+def start_from(model: PPO, saved: Any) -> None:
     """Copy a saved model's weights into `model` (its own hyperparameters stay the config's)."""
-    try:
-        saved = load_model(path)
-    except (FileNotFoundError, ValueError) as error:  # no file, or spaces that don't fit
-        raise ConfigError(f"init = {path!r}: {error}") from error
-    try:
-        model.policy.load_state_dict(saved.policy.state_dict())
-    except RuntimeError as error:
-        raise ConfigError(
-            f"init = {path!r}: its network does not fit net_arch = {list(config.ppo.net_arch)} "
-            f"({str(error).splitlines()[0]})"
-        ) from error
+    model.policy.load_state_dict(saved.policy.state_dict())
 
 
 class StopAfter(BaseCallback):
@@ -115,42 +140,81 @@ def train(
 ) -> Path:
     """Run (or continue) one training for at most `minutes` (default: the config's budget).
 
-    A fresh run refuses a folder that holds one already, unless `overwrite` (which empties it
+    The folder is locked for the run (RunLocked names the pid of a live run that holds it). A
+    fresh run refuses a folder that holds one already, unless `overwrite` (which empties it
     first): no run's checkpoints are lost, or mixed with another's. Returns the final model's path.
     """
-    if not resume and (folder / "latest.zip").exists():
-        if not overwrite:
-            raise FileExistsError(
-                f"{folder} holds a run already: --resume continues it, --overwrite starts over "
-                "(deleting it), or pick another --out"
-            )
-        shutil.rmtree(folder)
+    if minutes is not None and not (math.isfinite(minutes) and minutes >= 0):
+        raise ConfigError(f"minutes = {minutes!r} is not allowed: must be >= 0 (0: no budget)")
+    if resume and not folder.is_dir():
+        raise FileNotFoundError(f"--resume: no run folder at {folder}")
+    # The model to start from is checked before anything is written.
+    saved = None if resume and (folder / STATE_FILE).exists() else load_init(config)
+    with RunLock(folder) as lock:
+        if lock.stale_pid:
+            print(f"{folder}: taking over the lock left by pid {lock.stale_pid}, which ended")
+        state = _prepare(folder, resume, overwrite, config)
+        return _run(config, folder, state, saved, progress, minutes or config.minutes)
+
+
+def _prepare(folder: Path, resume: bool, overwrite: bool, config: TrainConfig) -> dict[str, Any]:
+    """The committed state to resume from ({} for a fresh run, in an emptied folder if asked)."""
+    used = (folder / STATE_FILE).exists() or (folder / LATEST).exists()
+    if resume and used:
+        remove_partial_files(folder)
+        state = read_state(folder)
+        link_latest(folder, state)  # a kill between the state and its link left latest.zip behind
+        return state
+    if resume:
+        print(f"--resume: {folder} holds no checkpoint yet; starting from step 0")
+    elif used and not overwrite:
+        raise FileExistsError(
+            f"{folder} holds a run already: --resume continues it, --overwrite starts over "
+            "(deleting it), or pick another --out"
+        )
+    elif used:  # --overwrite: only a folder that holds a run is emptied (never `--out .`)
+        for path in folder.iterdir():
+            if path.name == LOCK_FILE:  # ours now
+                continue
+            if path.is_dir() and not path.is_symlink():
+                shutil.rmtree(path)
+            else:
+                path.unlink()
+    config_text = json.dumps(dataclasses.asdict(config), indent=2)
+    atomic_write_text(folder / "train_config.json", config_text)
+    return {}
+
+
+def _run(
+    config: TrainConfig,
+    folder: Path,
+    state: dict[str, Any],
+    saved: Any,
+    progress: bool,
+    minutes: float,
+) -> Path:
     torch.set_num_threads(1)
     set_random_seed(config.seed)
-    folder.mkdir(parents=True, exist_ok=True)
     envs = make_envs(config)
-    state: dict[str, Any] = {}
-    if resume:
-        latest = folder / "latest.zip"
-        if not latest.is_file():
-            raise FileNotFoundError(f"--resume: no checkpoint at {latest}")
-        state = json.loads((folder / STATE_FILE).read_text())
-        if isinstance(envs, VecNormalize) and (folder / NORMALIZER_FILE).is_file():
-            envs = VecNormalize.load(str(folder / NORMALIZER_FILE), envs.venv)
-        model = PPO.load(latest, env=envs, device="cpu")
+    if state:
+        if isinstance(envs, VecNormalize) and "normalizer" in state:
+            envs = VecNormalize.load(str(folder / state["normalizer"]), envs.venv)
+        model = PPO.load(folder / state["checkpoint"], env=envs, device="cpu")
     else:
-        (folder / "train_config.json").write_text(json.dumps(dataclasses.asdict(config), indent=2))
         model = build_model(config, envs, folder)
-        if config.init:
-            start_from(model, config.init, config)
+        if saved is not None:
+            start_from(model, saved)
     if config.mode == "selfplay":
         opponents: Any = SelfPlayCallback(config.selfplay, folder / "snapshots", config.seed, state)
         (folder / "snapshots").mkdir(exist_ok=True)
     else:
-        opponents = CurriculumCallback(config.curriculum, config.seed, state.get("stage", 0))
+        opponents = CurriculumCallback(
+            config.curriculum, config.seed, state.get("stage", 0), state.get("results", ())
+        )
+    if not state:
+        save_checkpoint(model, folder, [opponents])  # step 0: from here on, --resume always works
     every = max(config.checkpoint_every // config.n_envs, 1)
     checkpoints = StateCheckpointCallback(every, folder, [opponents])
-    minutes = minutes or config.minutes
     callbacks = [opponents, checkpoints] + ([StopAfter(minutes)] if minutes else [])
     remaining = config.total_timesteps - model.num_timesteps
     try:
@@ -158,30 +222,43 @@ def train(
             model.learn(
                 remaining,
                 callback=CallbackList(callbacks),
-                reset_num_timesteps=not resume,
+                reset_num_timesteps=not state,
                 progress_bar=progress,
             )
-    except BaseException:
-        save_checkpoint(model, folder, [opponents])
+    except BaseException as error:
+        _save_on_the_way_out(model, folder, [opponents], error)
         raise
     save_checkpoint(model, folder, [opponents])
-    final = folder / "final.zip"
-    model.save(final)
-    return final
+    return atomic_write(folder / "final.zip", model.save)
+
+
+def _save_on_the_way_out(model: PPO, folder: Path, parts: list[Any], error: BaseException) -> None:
+    """The crash handler: save the model, unless it diverged (then keep the last good one)."""
+    try:
+        save_checkpoint(model, folder, parts)
+    except Diverged as diverged:
+        if not isinstance(error, Diverged):
+            raise diverged from error
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="vooga-train", description=__doc__.splitlines()[0])
     parser.add_argument("--config", default="default", help="a name in configs/train or a path")
     parser.add_argument("--out", type=Path, help="run folder (default runs/CONFIG)")
-    parser.add_argument("--seed", type=int)
+    parser.add_argument("--seed", type=int, help="overrides the config's seed")
     parser.add_argument("--steps", type=int, help="total timesteps (overrides the config)")
     parser.add_argument("--init", help="start from this saved model's weights (overrides)")
     parser.add_argument("--resume", action="store_true", help="continue from OUT/latest.zip")
     parser.add_argument("--overwrite", action="store_true", help="start over in a used OUT")
-    parser.add_argument("--minutes", type=float, help="stop after this much wall time")
+    parser.add_argument(
+        "--minutes", type=_minutes, help="stop after this much wall time (0: no budget)"
+    )
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     args = parser.parse_args(argv)
+    if args.resume and args.overwrite:
+        parser.error("--resume continues a run, --overwrite deletes it: give one of them")
+    if args.out is not None and args.out.exists() and not args.out.is_dir():
+        parser.error(f"--out {args.out} is a file; give a folder for the run")
     try:
         config = load_train_config(
             args.config, seed=args.seed, total_timesteps=args.steps, init=args.init
@@ -205,10 +282,21 @@ def main(argv: list[str] | None = None) -> int:
             file=sys.stderr,
         )
         return 130
-    except (FileNotFoundError, FileExistsError, ConfigError) as error:
+    except Diverged as error:
+        good = json.loads((folder / STATE_FILE).read_text())["checkpoint"]
+        print(f"error: {error}; kept the last good checkpoint, {folder / good}", file=sys.stderr)
+        return 1
+    except (FileNotFoundError, FileExistsError, ConfigError, BrokenRun, RunLocked) as error:
         parser.error(str(error))
     print(f"trained: {final}")
     return 0
+
+
+def _minutes(text: str) -> float:
+    value = float(text)
+    if not (math.isfinite(value) and value >= 0):
+        raise argparse.ArgumentTypeError(f"must be a number >= 0 (0: no budget), got {text!r}")
+    return value
 
 
 if __name__ == "__main__":

@@ -6,11 +6,34 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from vooga_env.config import CONFIG_DIR, ConfigError, build_config, read_toml
+from vooga_env.config import CONFIG_DIR, ConfigError, build_config, load_config, read_toml
 from vooga_env.policies import SCRIPTED
 
 TRAIN_DIR = CONFIG_DIR / "train"
 MODES = ("scripted", "selfplay")
+MAX_SEED = 2**32 - 1  # numpy's legacy seeding (SB3's set_random_seed) takes 0 .. 2**32 - 1
+
+
+def _refuse(key: str, value: Any, allowed: str) -> None:
+    raise ConfigError(f"{key} = {value!r} is not allowed: {allowed}")
+
+
+def _at_least(config: Any, low: int, *keys: str) -> None:
+    for key in keys:
+        if getattr(config, key) < low:
+            _refuse(key, getattr(config, key), f"must be >= {low}")
+
+
+def _within(config: Any, low: float, high: float, *keys: str) -> None:
+    for key in keys:
+        if not low <= getattr(config, key) <= high:
+            _refuse(key, getattr(config, key), f"must be in [{low:g}, {high:g}]")
+
+
+def _fighters(key: str, names: tuple[str, ...]) -> None:
+    for name in names:
+        if name not in SCRIPTED:
+            _refuse(key, list(names), f"{name!r} is not one of {', '.join(SCRIPTED)}")
 
 
 @dataclass(frozen=True)
@@ -27,6 +50,19 @@ class PPOConfig:
     clip_range: float = 0.2
     net_arch: tuple[int, ...] = (64, 64)
     normalize_reward: bool = False  # SB3's VecNormalize on rewards only (inference needs nothing)
+
+    def __post_init__(self) -> None:
+        # SB3 takes all of these and fails (or trains nothing) only once training has started.
+        for key in ("learning_rate", "clip_range"):
+            if not getattr(self, key) > 0:
+                _refuse(key, getattr(self, key), "must be > 0")
+        _at_least(self, 1, "n_steps", "n_epochs")
+        _at_least(self, 2, "batch_size")  # SB3 normalises advantages over each minibatch
+        _within(self, 0.0, 1.0, "gamma", "gae_lambda")
+        if self.ent_coef < 0:
+            _refuse("ent_coef", self.ent_coef, "must be >= 0")
+        if any(width < 1 for width in self.net_arch):
+            _refuse("net_arch", list(self.net_arch), "every layer needs >= 1 unit")
 
 
 @dataclass(frozen=True)
@@ -59,6 +95,7 @@ class CurriculumConfig:
             )
         if not 0.0 <= self.review_ratio < 1.0:
             raise ConfigError(f"review_ratio = {self.review_ratio} is not allowed: in [0, 1)")
+        _at_least(self, 1, "window")
 
     def rung(self, stage: int) -> tuple[str, ...]:
         """The fighters of rung `stage`."""
@@ -82,6 +119,13 @@ class SelfPlayConfig:
     scripted_ratio: float = 0.2
     scripted: tuple[str, ...] = ("rush", "turtle", "zoner", "edge_guard")
 
+    def __post_init__(self) -> None:
+        _at_least(self, 1, "save_steps", "swap_steps", "window")
+        _within(self, 0.0, 1.0, "play_against_latest_ratio", "scripted_ratio")
+        _fighters("scripted", self.scripted)
+        if self.scripted_ratio > 0 and not self.scripted:
+            _refuse("scripted", [], f"name a fighter for scripted_ratio = {self.scripted_ratio}")
+
 
 @dataclass(frozen=True)
 class TrainConfig:
@@ -104,9 +148,19 @@ class TrainConfig:
     def __post_init__(self) -> None:
         if self.mode not in MODES:
             raise ConfigError(f"mode = {self.mode!r} is not allowed: one of {', '.join(MODES)}")
-        for key in ("total_timesteps", "n_envs", "checkpoint_every"):
-            if getattr(self, key) <= 0:
-                raise ConfigError(f"{key} = {getattr(self, key)} is not allowed: must be > 0")
+        _at_least(self, 1, "total_timesteps", "n_envs", "checkpoint_every", "eval_games")
+        if self.n_envs * self.ppo.n_steps < 2:
+            _refuse(
+                "n_envs", self.n_envs, f"n_envs * ppo.n_steps ({self.ppo.n_steps}) must be >= 2"
+            )
+        if not 0 <= self.seed <= MAX_SEED - self.n_envs:  # env i is seeded seed + i
+            _refuse("seed", self.seed, f"must be in 0 .. {MAX_SEED - self.n_envs}")
+        if self.minutes < 0:
+            _refuse("minutes", self.minutes, "must be >= 0 (0: no time budget)")
+        try:
+            load_config(self.fight)
+        except ConfigError as error:
+            raise ConfigError(f"fight = {self.fight!r} is not allowed: {error}") from None
 
 
 def load_train_config(config: str | Path, **overrides: Any) -> TrainConfig:

@@ -25,6 +25,7 @@ from typing import Any
 from agents.train import train
 from agents.train_config import load_train_config
 from vooga_env.elo import K_FACTOR, START_RATING, round_robin
+from vooga_env.files import atomic_write_text
 from vooga_env.match import MatchResult, run_match, wilson_interval
 from vooga_env.models import FrozenPolicy, load_model
 from vooga_env.policies import SCRIPTED
@@ -101,7 +102,7 @@ def main(argv: list[str] | None = None) -> int:
         "train_minutes": trained / 60.0,
         **measure(model, args.games, args.round_robin_games),
     }
-    (args.out / "result.json").write_text(json.dumps(result, indent=2))
+    atomic_write_text(args.out / "result.json", json.dumps(result, indent=2))
     print(f"trained {config.name} for {trained / 60:.1f} min")
     if "vs_first_snapshot" in result:
         print(

@@ -58,6 +58,7 @@ class FightVectorEnv(gymnasium.vector.VectorEnv):
         threads: int = 1,
         **overrides: Any,
     ) -> None:
+        self._spectator: Spectator | None = None  # first: gymnasium's __del__ closes it
         if seat not in (0, 1):
             raise ValueError(f"seat must be 0 or 1, got {seat!r}")
         if render_mode not in (None, "rgb_array"):

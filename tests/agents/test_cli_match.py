@@ -78,7 +78,7 @@ def test_record_and_replay_round_trip(tmp_path, capsys):
     saved = json.loads(replay.read_text())
     assert saved["names"] == ["zoner", "rush"]
     played = run_json(match.main, ["--replay", str(replay)], capsys)
-    assert played["matches_recording"] is True
+    assert played["matches_recording"] is True and played["checked"] == "every step"
     assert played["steps"] == len(saved["actions"]) == saved["result"]["steps"]
     assert played["winner"] == saved["result"]["winner"]
     assert played["result"]["positions"] == saved["result"]["positions"]
@@ -96,6 +96,11 @@ def test_a_doctored_replay_fails(tmp_path, capsys):
     replay.write_text(json.dumps(data))
     assert match.main(["--replay", str(replay), "--no-progress"]) == 1
     assert "health" in capsys.readouterr().err
+    data = json.loads(replay.read_text())
+    data["actions"][17][1] = (data["actions"][17][1] + 1) % 10
+    replay.write_text(json.dumps(data))
+    assert match.main(["--replay", str(replay), "--no-progress"]) == 1
+    assert "step 17 differs from the recording" in capsys.readouterr().err
 
 
 def test_watching_in_a_window_headless(tmp_path, capsys, monkeypatch):

@@ -27,7 +27,9 @@ def test_scripted_curriculum_writes_loadable_models(tmp_path):
     assert state["num_timesteps"] == config.total_timesteps
     assert state["opponent"] in config.curriculum.ladder
     checkpoints = sorted((tmp_path / "checkpoints").glob("*.zip"))
-    assert [p.name for p in checkpoints] == ["ppo_1024_steps.zip", "ppo_2048_steps.zip"]
+    names = ["ppo_0_steps.zip", "ppo_1024_steps.zip", "ppo_2048_steps.zip"]  # 0: resumable at once
+    assert sorted(p.name for p in checkpoints) == sorted(names)
+    assert state["checkpoint"] == "checkpoints/ppo_2048_steps.zip"
     load_model(checkpoints[0])
 
 
@@ -54,6 +56,12 @@ def test_a_fresh_run_never_overwrites_an_old_one_unless_told(tmp_path, capsys):
     assert exit_info.value.code == 2 and "holds a run already" in capsys.readouterr().err
     assert main([*argv, "--overwrite"]) == 0
     assert not stale.exists()  # started over: nothing of the old run is left to mix in
+    mine = tmp_path / "elsewhere" / "notes.txt"
+    mine.parent.mkdir()
+    mine.write_text("not a run's")
+    again = ["--steps", "512", "--out", str(mine.parent), "--no-progress", "--overwrite"]
+    assert main([*argv[:2], *again]) == 0
+    assert mine.read_text() == "not a run's"  # a folder without a run is not emptied
 
 
 def test_init_starts_from_a_saved_models_weights_or_says_why_not(tmp_path):
@@ -64,14 +72,15 @@ def test_init_starts_from_a_saved_models_weights_or_says_why_not(tmp_path):
     config = load_train_config("smoke", total_timesteps=512)
     saved = train(config, tmp_path / "first", progress=False)
     model = build_model(config, make_envs(config), tmp_path)
-    start_from(model, str(saved), config)
+    start_from(model, load_model(saved))
     expected = load_model(saved).policy.state_dict()
     for name, tensor in model.policy.state_dict().items():
         assert torch.equal(tensor, expected[name]), name
     wider = load_train_config("smoke", init=str(saved))
     wider = dataclasses.replace(wider, ppo=dataclasses.replace(wider.ppo, net_arch=(8,)))
-    with pytest.raises(ConfigError, match="init = .*does not fit net_arch = \\[8\\]"):
+    with pytest.raises(ConfigError, match=r"init = .*layers \[64, 64\], .*net_arch = \[8\]"):
         train(wider, tmp_path / "second", progress=False)
+    assert not (tmp_path / "second").exists()  # refused before any work
     with pytest.raises(ConfigError, match="init = 'nowhere.zip': no saved model"):
         train(load_train_config("smoke", init="nowhere.zip"), tmp_path / "third", progress=False)
 
@@ -217,3 +226,20 @@ def test_torch_is_the_pinned_cpu_build():
 
     pinned = (ROOT / "constraints.txt").read_text().split("torch==")[1].split()[0]
     assert torch.__version__.split("+")[0] == pinned
+
+
+def test_resume_keeps_the_curriculums_recent_results(tmp_path):
+    (tmp_path / "short.toml").write_text("max_cycles = 60\n")  # games that end within the run
+    path = tmp_path / "run.toml"
+    path.write_text(
+        f'fight = "{tmp_path / "short.toml"}"\ntotal_timesteps = 512\nn_envs = 2\n'
+        "checkpoint_every = 512\n[ppo]\nn_steps = 256\nbatch_size = 256\nn_epochs = 1\n"
+        '[curriculum]\nladder = ["idle", "random"]\nwindow = 50\n'
+    )
+    out = tmp_path / "out"
+    train(load_train_config(path), out, progress=False)
+    before = json.loads((out / "train_state.json").read_text())
+    assert before["results"]  # some games ended: their scores are what promotion is judged on
+    train(load_train_config(path), out, resume=True, progress=False)
+    after = json.loads((out / "train_state.json").read_text())
+    assert after["results"] == before["results"] and after["stage"] == before["stage"]
