@@ -185,7 +185,10 @@ def test_a_model_training_cannot_start_from_is_a_usage_error(bad_models, name, m
         (["--resume", "--overwrite"], "--resume continues a run, --overwrite deletes it"),
         (["--resume"], "--resume: no run folder at"),
         (["--init", "nowhere.zip"], "init = 'nowhere.zip': no saved model at nowhere.zip"),
-        (["--config", "nope"], "unknown training config 'nope'; known: default, rllib_selfplay, rllib_smoke, selfplay"),
+        (
+            ["--config", "nope"],
+            "unknown training config 'nope'; known: default, rllib_selfplay, rllib_smoke, selfplay",
+        ),
         (["--config", "missing.toml"], "cannot read training config file missing.toml"),
     ],
 )
