@@ -61,6 +61,16 @@ class StepEvents:
     over: bool = False
 
 
+def _action(field: str, value: object) -> Action:
+    """`value` as an Action, or a ValueError naming `field`, the value and the range."""
+    try:
+        return Action(value)
+    except ValueError:
+        raise ValueError(
+            f"{field} = {value!r} is not an action: an int in 0..{len(Action) - 1}"
+        ) from None
+
+
 def hitbox_box(
     fighter: Fighter, attack: AttackConfig, facing: float
 ) -> tuple[float, float, float, float]:
@@ -130,15 +140,41 @@ class Fight:
         self.steps = 0
 
     def step(self, actions: tuple[int, int]) -> StepEvents:
-        """Run one env step (frame_skip physics frames) with each fighter's action repeated."""
+        """Run one env step (frame_skip physics frames) with each fighter's action repeated.
+
+        A step that raises (a custom collision kind's error, say) leaves the fight as it was.
+        """
         events = StepEvents()
-        actions = (Action(actions[0]), Action(actions[1]))
-        for _ in range(self.config.frame_skip):
-            self._frame(actions, events)
-            if events.over:
-                break
+        actions = (_action("actions[0]", actions[0]), _action("actions[1]", actions[1]))
+        saved = self._save()
+        try:
+            for _ in range(self.config.frame_skip):
+                self._frame(actions, events)
+                if events.over:
+                    break
+        except BaseException:
+            self._restore(saved)
+            raise
         self.steps += 1
         return events
+
+    def _save(self) -> tuple:
+        """What a step changes: the frame count and every fighter's and hitbox's attributes."""
+        sprites = [sprite for fighter in self.fighters for sprite in (fighter, fighter.hitbox)]
+        struck = [set(fighter.hitbox.struck) for fighter in self.fighters]
+        return self.frame, [(sprite, dict(sprite.__dict__)) for sprite in sprites], struck
+
+    def _restore(self, saved: tuple) -> None:
+        """Put back what `_save` kept (values it held were checked when they were first set)."""
+        self.frame, sprites, struck = saved
+        for sprite, attributes in sprites:
+            sprite.__dict__.update(attributes)
+            sprite.status.reset()
+            sprite.response.reset()
+        for fighter, hits in zip(self.fighters, struck):
+            fighter.hitbox.struck.clear()
+            fighter.hitbox.struck.update(hits)
+        self.hit_reaction.hits.clear()
 
     @property
     def over(self) -> bool:

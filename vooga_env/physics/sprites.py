@@ -31,6 +31,10 @@ class SpriteTemplate:
     sprite's creation order.
     """
 
+    x = Checked(validation.finite)
+    y = Checked(validation.finite)
+    vx = Checked(validation.finite)
+    vy = Checked(validation.finite)
     width = Checked(validation.positive)
     height = Checked(validation.positive)
     mass = Checked(validation.mass)
@@ -51,14 +55,14 @@ class SpriteTemplate:
         gravity_scale: float = 1.0,
         name: str = "",
     ) -> None:
-        self.x = validation.finite("x", x)
-        self.y = validation.finite("y", y)
+        self.x = x
+        self.y = y
         self.width = width
         self.height = height
         self.mass = mass
         self.speed = speed
-        self.vx = validation.finite("vx", vx)
-        self.vy = validation.finite("vy", vy)
+        self.vx = vx
+        self.vy = vy
         self.gravity_scale = gravity_scale
         self.name = name
         self.active = True
