@@ -7,6 +7,9 @@ the mirrored observations, so one policy can play either seat.
 from __future__ import annotations
 
 import enum
+from typing import Any
+
+import numpy as np
 
 
 class Action(enum.IntEnum):
@@ -32,3 +35,18 @@ WALK = {
 }
 JUMPS = frozenset({Action.JUMP, Action.JUMP_LEFT, Action.JUMP_RIGHT})
 ATTACKS = {Action.PUNCH: "punch", Action.KICK: "kick"}
+
+
+def action_index(who: str, action: Any) -> int:
+    """`action` as a plain int in 0..9 (a numpy integer or 0-d array too), or a clear error.
+
+    `who` names the action's source in the message, e.g. "action for fighter_0".
+    """
+    value = action
+    if isinstance(action, np.ndarray) and action.shape == ():
+        value = action.item()
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{who} must be an int in 0..{len(Action) - 1}, got {action!r}")
+    if not 0 <= value < len(Action):
+        raise ValueError(f"{who} must be in 0..{len(Action) - 1}, got {action!r}")
+    return int(value)

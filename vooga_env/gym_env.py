@@ -8,6 +8,7 @@ from typing import Any
 import gymnasium
 import numpy as np
 
+from vooga_env.actions import action_index
 from vooga_env.config import FightConfig
 from vooga_env.parallel import AGENTS, FightParallelEnv
 from vooga_env.policies import Policy, make_policy
@@ -37,8 +38,12 @@ class FightEnv(gymnasium.Env):
         render_mode: str | None = None,
         **kwargs: Any,
     ) -> None:
-        if seat not in (0, 1, "random"):
-            raise ValueError(f"seat must be 0, 1 or 'random', got {seat!r}")
+        if seat != "random":
+            if isinstance(seat, (bool, np.bool_)) or not isinstance(seat, (int, np.integer)):
+                raise TypeError(f"seat must be 0, 1 or 'random', got {seat!r}")
+            if seat not in (0, 1):
+                raise ValueError(f"seat must be 0, 1 or 'random', got {seat!r}")
+            seat = int(seat)
         self.fight_env = FightParallelEnv(config, render_mode=render_mode, **kwargs)
         self.metadata = self.fight_env.metadata
         self.render_mode = render_mode
@@ -74,7 +79,10 @@ class FightEnv(gymnasium.Env):
         if self._opponent_observation is None:
             raise RuntimeError("step() called before reset()")
         me, them = AGENTS[self.seat], AGENTS[1 - self.seat]
-        opponent_action = int(self.opponent.act(self._opponent_observation))
+        opponent_action = action_index(
+            f"the action of opponent {self.opponent.name!r} (playing {them})",
+            self.opponent.act(self._opponent_observation),
+        )
         observations, rewards, terminations, truncations, infos = self.fight_env.step(
             {me: action, them: opponent_action}
         )

@@ -127,6 +127,11 @@ def make_simulation(
     """The simulation `backend` names; "auto": compiled when it can run this env, else engine."""
     if backend not in BACKENDS:
         raise ValueError(f"backend = {backend!r} is not allowed: one of {', '.join(BACKENDS)}")
+    if reward_fn is not None and not callable(reward_fn):
+        raise TypeError(
+            f"reward_fn = {reward_fn!r} is not allowed: a callable (fight, events) -> "
+            "(reward_0, reward_1), or None for the config's HitAndRingOutReward"
+        )
     if backend == "engine":
         return EngineSimulation(config, reward_fn)
     from vooga_env.vector.engine import numba_available

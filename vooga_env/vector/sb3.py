@@ -35,6 +35,22 @@ from vooga_env.vector.opponents import VectorOpponent
 _EVENTS = ("damage_dealt", "damage_taken", "hits_landed", "hits_blocked", "rung_out", "knocked_out")
 
 
+def _opponent_actions(opponent: Any, observations: np.ndarray) -> np.ndarray:
+    """The opponent's actions for the batch, or an error that blames the opponent."""
+    actions = np.asarray(opponent.act(observations))
+    size = len(observations)
+    if actions.shape != (size,) or not np.issubdtype(actions.dtype, np.integer):
+        raise ValueError(
+            f"opponent {opponent!r}: act(observations) must return {size} int actions "
+            f"(shape ({size},)), got {actions.dtype} of shape {actions.shape}"
+        )
+    if size and (actions.min() < 0 or actions.max() >= len(Action)):
+        raise ValueError(
+            f"opponent {opponent!r}: actions must be in 0..{len(Action) - 1}, got {actions!r}"
+        )
+    return actions
+
+
 class FightVecEnv(VecEnv):
     """N batched fights as an SB3 VecEnv: 2N self-play slots, or N slots against an opponent."""
 
@@ -101,7 +117,13 @@ class FightVecEnv(VecEnv):
         return self._slots(observations)
 
     def step_async(self, actions: np.ndarray) -> None:
-        self._actions = np.asarray(actions)
+        actions = np.asarray(actions)
+        if actions.size != self.num_envs or actions.ndim > 2:
+            raise ValueError(
+                f"actions must hold one action per slot, {self.num_envs} "
+                f"(shape ({self.num_envs},)), got shape {actions.shape}"
+            )
+        self._actions = actions
 
     def step_wait(self):
         if self._actions is None or self._observations is None:
@@ -113,7 +135,7 @@ class FightVecEnv(VecEnv):
             pairs = np.empty((self.fights.num_fights, 2), dtype=np.int64)
             pairs[:, self.seat] = actions
             opponent_obs = self._observations[:, 1 - self.seat]
-            pairs[:, 1 - self.seat] = self.opponent.act(opponent_obs)
+            pairs[:, 1 - self.seat] = _opponent_actions(self.opponent, opponent_obs)
         observations, rewards, terminated, truncated, info = self.fights.step(pairs)
         self._observations = observations
         self._actions = None
