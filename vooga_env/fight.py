@@ -146,27 +146,28 @@ class Fight:
         """
         events = StepEvents()
         actions = (_action("actions[0]", actions[0]), _action("actions[1]", actions[1]))
-        saved = self._save()
+        saved = self.snapshot()
         try:
             for _ in range(self.config.frame_skip):
                 self._frame(actions, events)
                 if events.over:
                     break
         except BaseException:
-            self._restore(saved)
+            self.restore(saved)
             raise
         self.steps += 1
         return events
 
-    def _save(self) -> tuple:
-        """What a step changes: the frame count and every fighter's and hitbox's attributes."""
+    def snapshot(self) -> tuple:
+        """What a step changes: the frame and step counts, every fighter's and hitbox's state."""
         sprites = [sprite for fighter in self.fighters for sprite in (fighter, fighter.hitbox)]
         struck = [set(fighter.hitbox.struck) for fighter in self.fighters]
-        return self.frame, [(sprite, dict(sprite.__dict__)) for sprite in sprites], struck
+        attributes = [(sprite, dict(sprite.__dict__)) for sprite in sprites]
+        return self.frame, self.steps, attributes, struck
 
-    def _restore(self, saved: tuple) -> None:
-        """Put back what `_save` kept (values it held were checked when they were first set)."""
-        self.frame, sprites, struck = saved
+    def restore(self, snapshot: tuple) -> None:
+        """Go back to a `snapshot()` of this fight (its values were checked when first set)."""
+        self.frame, self.steps, sprites, struck = snapshot
         for sprite, attributes in sprites:
             sprite.__dict__.update(attributes)
             sprite.status.reset()
