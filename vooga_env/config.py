@@ -245,6 +245,13 @@ def build_config(cls: type, data: Any, source: str, prefix: str = "") -> Any:
             raise ConfigError(
                 f"{source}: unknown key {prefix + str(key)!r}; allowed: {', '.join(names)}"
             )
+    for field in dataclasses.fields(cls):
+        required = field.default is dataclasses.MISSING
+        if required and field.default_factory is dataclasses.MISSING and field.name not in data:
+            raise ConfigError(
+                f"{source}: missing key {prefix + field.name!r}; {prefix or 'a config'} needs "
+                f"{', '.join(names)}"
+            )
     values = {}
     for name in names:
         if name in data:

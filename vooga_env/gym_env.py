@@ -65,7 +65,13 @@ class FightEnv(gymnasium.Env):
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[np.ndarray, dict[str, Any]]:
-        super().reset(seed=seed)
+        if seed is not None and (
+            isinstance(seed, (bool, np.bool_))
+            or not isinstance(seed, (int, np.integer))
+            or seed < 0
+        ):
+            raise ValueError(f"seed must be a non-negative int or None, got {seed!r}")
+        super().reset(seed=None if seed is None else int(seed))
         fight_seed = int(self.np_random.integers(2**31))
         if self.seat_choice == "random":
             self.seat = int(self.np_random.integers(2))
@@ -79,10 +85,7 @@ class FightEnv(gymnasium.Env):
         if self._opponent_observation is None:
             raise RuntimeError("step() called before reset()")
         me, them = AGENTS[self.seat], AGENTS[1 - self.seat]
-        opponent_action = action_index(
-            f"the action of opponent {self.opponent.name!r} (playing {them})",
-            self.opponent.act(self._opponent_observation),
-        )
+        opponent_action = self._opponent_action(them)
         observations, rewards, terminations, truncations, infos = self.fight_env.step(
             {me: action, them: opponent_action}
         )
@@ -94,6 +97,17 @@ class FightEnv(gymnasium.Env):
             "opponent_action": opponent_action,
         }
         return observations[me], rewards[me], terminations[me], truncations[me], info
+
+    def _opponent_action(self, seat: str) -> int:
+        """The opponent's action; a bad one is blamed on the opponent, not on its seat."""
+        who = f"opponent {self.opponent.name!r} (playing {seat})"
+        try:
+            action = self.opponent.act(self._opponent_observation)
+        except TypeError as error:
+            raise TypeError(f"{who}: {error}") from error
+        except ValueError as error:
+            raise ValueError(f"{who}: {error}") from error
+        return action_index(f"the action of {who}", action)
 
     def render(self) -> np.ndarray | None:
         return self.fight_env.render()

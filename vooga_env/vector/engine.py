@@ -277,7 +277,7 @@ class VectorFight:
         if actions.min() < 0 or actions.max() > 9:
             fight, seat = np.argwhere((actions < 0) | (actions > 9))[0].tolist()
             raise ValueError(
-                f"actions[{fight}, {seat}] = {actions[fight, seat]!r}: actions must be in 0..9"
+                f"actions[{fight}, {seat}] = {int(actions[fight, seat])}: actions must be in 0..9"
             )
         return actions.astype(np.int64, copy=False)
 
