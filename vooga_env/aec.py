@@ -8,6 +8,7 @@ is given (the agent named), `None` for an agent that is done, and reset before a
 
 from __future__ import annotations
 
+import numbers
 from typing import Any
 
 from pettingzoo import ParallelEnv
@@ -58,9 +59,9 @@ class FightAECEnv(OrderEnforcingWrapper):
 
     def agent_iter(self, max_iter: int = 2**63) -> AECOrderEnforcingIterable:
         self._need_reset("agent_iter")
-        if isinstance(max_iter, bool) or not isinstance(max_iter, int) or max_iter < 0:
+        if isinstance(max_iter, bool) or not isinstance(max_iter, numbers.Integral) or max_iter < 0:
             raise ValueError(f"max_iter must be a non-negative int, got {max_iter!r}")
-        return _Iterable(self, max_iter)
+        return _Iterable(self, int(max_iter))
 
     def _need_reset(self, call: str) -> None:
         if not self._has_reset:

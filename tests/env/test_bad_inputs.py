@@ -19,6 +19,7 @@ import pytest
 import vooga_env
 from vooga_env.config import ConfigError, load_config
 from vooga_env.gym_env import FightEnv
+from vooga_env.match import run_match
 from vooga_env.physics import (
     FighterBody,
     FightPhysicsEngine,
@@ -420,6 +421,22 @@ CASES = [
         FileNotFoundError,
         "nowhere/model",
     ),  # fmt: skip
+    # --- matches
+    ("match-episodes", lambda: run_match("rush", "idle", episodes=0), V, "episodes.*0"),
+    ("match-seed", lambda: run_match("rush", "idle", seed=-3), V, "seed.*-3"),
+    ("match-seed-float", lambda: run_match("rush", "idle", seed=0.5), V, "seed.*0.5"),
+    (
+        "match-record-frames",
+        lambda: run_match("rush", "idle", record_frames=-1),
+        V,
+        "record_frames.*-1",
+    ),  # fmt: skip
+    ("match-names", lambda: run_match("rush", "idle", names="ab"), T, "names.*'ab'"),
+    ("match-names-int", lambda: run_match("rush", "idle", names=3), T, "names.*3"),
+    ("match-progress", lambda: run_match("rush", "idle", progress=3), T, "progress.*3"),
+    ("match-step-hook", lambda: run_match("rush", "idle", step_hook="log"), T, "step_hook.*'log'"),
+    ("match-policy", lambda: run_match("rush", 7), T, "policy.*7"),
+    ("match-config", lambda: run_match("rush", "idle", episodes=1, stocks=0), C, "stocks = 0"),
     # --- physics sprites and world
     ("sprite-x-nan", assign("x", NAN), V, "x.*nan"),
     ("sprite-y-inf", assign("y", INF), V, "y.*inf"),
@@ -530,6 +547,11 @@ def test_numpy_scalars_at_the_other_entry_points_are_accepted():
     group = SpriteGroupTemplate()
     group.add_sprite_array([body])
     World(engine, group, []).step(np.float32(16.0), [MotionAction(body, np.float32(1.0), 0)])
+    group.add_sprite(SpriteTemplate(0, 0, 1, 1), np.int64(1))
+    aec = vooga_env.env(max_cycles=np.int64(2))
+    aec.reset(seed=np.int64(0))
+    assert len(list(aec.agent_iter(max_iter=np.int64(0)))) == 0
+    assert run_match("rush", "idle", episodes=np.int64(1), seed=np.uint8(2)).games == 1
 
 
 def test_a_numpy_max_cycles_plays_the_same_game_as_a_plain_one():
