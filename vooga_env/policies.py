@@ -194,6 +194,18 @@ SCRIPTED: dict[str, type[Scripted]] = {
 }
 
 
+def _one_action(name: str, action: Any) -> int:
+    """A policy's action as an int in 0..9 (a one-element array counts), or an error naming it."""
+    if isinstance(action, np.ndarray):
+        if action.size != 1:
+            raise ValueError(
+                f"the action of policy {name!r} must be one int in 0..{len(Action) - 1}, "
+                f"got {action!r}"
+            )
+        action = action.reshape(())
+    return action_index(f"the action of policy {name!r}", action)
+
+
 class CallablePolicy(Policy):
     """Wraps any `obs -> action` callable."""
 
@@ -202,7 +214,7 @@ class CallablePolicy(Policy):
         self.name = getattr(function, "__name__", "callable")
 
     def act(self, observation: np.ndarray) -> int:
-        return action_index(f"the action of policy {self.name!r}", self.function(observation))
+        return _one_action(self.name, self.function(observation))
 
 
 class PredictPolicy(Policy):
@@ -215,13 +227,7 @@ class PredictPolicy(Policy):
 
     def act(self, observation: np.ndarray) -> int:
         action, _ = self.model.predict(observation, deterministic=self.deterministic)
-        action = np.asarray(action)
-        if action.size != 1:
-            raise ValueError(
-                f"the action of policy {self.name!r} must be one int in 0..{len(Action) - 1}, "
-                f"got {action!r}"
-            )
-        return action_index(f"the action of policy {self.name!r}", action.reshape(()))
+        return _one_action(self.name, np.asarray(action))
 
     def predict(self, observation, state=None, episode_start=None, deterministic=True):
         return self.model.predict(observation, state, episode_start, deterministic)

@@ -371,6 +371,18 @@ CASES = [
     ("vecenv-seat", vec_env([0, 0], opponent="rush", seat=2), V, "seat.*2"),
     ("vecenv-opponent-int", vec_env([0, 0], opponent=42), T, "opponent.*42"),
     ("vecenv-opponent-name", vec_env([0, 0], opponent="ninja"), V, "'ninja'"),
+    (
+        "vecenv-opponent-seed",
+        vec_env([0, 0], opponent="rush", opponent_seed=-1),
+        V,
+        "opponent seed.*-1",
+    ),  # fmt: skip
+    (
+        "vecenv-opponent-seed-float",
+        vec_env([0, 0], opponent="zoner", opponent_seed=0.5),
+        V,
+        "opponent seed.*0.5",
+    ),  # fmt: skip
     ("vecenv-too-few-actions", vec_env([0, 0, 0]), V, "actions.*4.*(3,)"),
     ("vecenv-too-many-actions", vec_env([0, 0, 0, 0, 0]), V, "actions.*4.*(5,)"),
     ("vecenv-vs-too-many", vec_env([0, 0, 0], opponent="rush"), V, "actions.*2.*(3,)"),

@@ -165,7 +165,7 @@ _SETTINGS = dict(
 )
 
 
-@settings(max_examples=25, **_SETTINGS)
+@settings(max_examples=40, **_SETTINGS)
 @given(configs(), st.integers(0, 2**31))
 def test_every_valid_config_runs_the_same_on_both_backends(overrides, seed):
     play_both(overrides, seed)
