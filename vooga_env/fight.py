@@ -117,6 +117,7 @@ class Fight:
         self.frame = 0
         self.steps = 0
         self.spawns = [0.0, 0.0]
+        self._before_step = self.snapshot()
         # MotionActions are immutable: one per fighter and walking action, and per slide direction
         self._walks = [
             {a: MotionAction(f, WALK[a] * SIDES[f.index], 0.0) for a in WALK} for f in self.fighters
@@ -146,23 +147,27 @@ class Fight:
         """
         events = StepEvents()
         actions = (_action("actions[0]", actions[0]), _action("actions[1]", actions[1]))
-        saved = self.snapshot()
+        self._before_step = self.snapshot()
         try:
             for _ in range(self.config.frame_skip):
                 self._frame(actions, events)
                 if events.over:
                     break
         except BaseException:
-            self.restore(saved)
+            self.undo_step()
             raise
         self.steps += 1
         return events
+
+    def undo_step(self) -> None:
+        """Go back to just before the last `step` (the env's reward failed: it did not happen)."""
+        self.restore(self._before_step)
 
     def snapshot(self) -> tuple:
         """What a step changes: the frame and step counts, every fighter's and hitbox's state."""
         sprites = [sprite for fighter in self.fighters for sprite in (fighter, fighter.hitbox)]
         struck = [set(fighter.hitbox.struck) for fighter in self.fighters]
-        attributes = [(sprite, dict(sprite.__dict__)) for sprite in sprites]
+        attributes = [(sprite, sprite.__dict__.copy()) for sprite in sprites]
         return self.frame, self.steps, attributes, struck
 
     def restore(self, snapshot: tuple) -> None:

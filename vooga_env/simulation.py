@@ -81,12 +81,11 @@ class EngineSimulation:
 
     def step(self, first: int, second: int) -> StepResult:
         fight = self.fight
-        saved = fight.snapshot()
         events = fight.step((first, second))
         try:
             rewards = _reward_pair(self.reward_fn, self.reward_fn(fight, events))
         except BaseException:
-            fight.restore(saved)  # a step whose reward failed did not happen
+            fight.undo_step()  # a step whose reward failed did not happen
             raise
         terminated = events.over
         truncated = not terminated and fight.steps >= self._max_cycles

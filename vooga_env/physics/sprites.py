@@ -98,13 +98,15 @@ class SpriteTemplate:
 
         Then clear the increment, the reactions' requests and the collision status for next frame.
         """
+        # written past the `Checked` descriptors: the engine's own results, from checked values
+        state = self.__dict__
         if self.status.collided:
-            self.x, self.vx = self.response.resolve(0, self.x, self.increment_x, self.vx)
-            self.y, self.vy = self.response.resolve(1, self.y, self.increment_y, self.vy)
+            state["x"], state["vx"] = self.response.resolve(0, self.x, self.increment_x, self.vx)
+            state["y"], state["vy"] = self.response.resolve(1, self.y, self.increment_y, self.vy)
             self.response.reset()
         else:
-            self.x += self.increment_x
-            self.y += self.increment_y
+            state["x"] = self.x + self.increment_x
+            state["y"] = self.y + self.increment_y
         self.increment_x = self.increment_y = 0.0
         self.status.reset()
 
