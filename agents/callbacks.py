@@ -11,9 +11,10 @@ from typing import Any
 import numpy as np
 from stable_baselines3.common.callbacks import BaseCallback, CheckpointCallback
 
-from .train_config import CurriculumConfig, SelfPlayConfig
 from vooga_env.elo import START_RATING, update
 from vooga_env.models import FrozenPolicy, load_model
+
+from .train_config import CurriculumConfig, SelfPlayConfig
 
 STATE_FILE = "train_state.json"
 NORMALIZER_FILE = "vec_normalize.pkl"  # VecNormalize's running statistics, for --resume

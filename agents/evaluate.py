@@ -15,16 +15,17 @@ import sys
 from collections.abc import Sequence
 from typing import Any
 
-from . import common
-from .tournament import format_tournament
 from vooga_env.elo import Tournament, round_robin
 from vooga_env.match import wilson_interval
 from vooga_env.policies import SCRIPTED
 
+from . import common
+from .tournament import format_tournament
+
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
-        prog="python -m agents.evaluate",
+        prog="vooga-evaluate",
         description="Win rates (95% Wilson interval) of MODEL against the scripted fighters, "
         "and its Elo among them.",
     )

@@ -15,15 +15,16 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from . import common
 from vooga_env.match import MatchResult, run_match
 from vooga_env.recording import check_writer, save_animation
 from vooga_env.replay import Replay, ReplayError, ReplayMismatch, play_back
 
+from . import common
+
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
-        prog="python -m agents.match",
+        prog="vooga-match",
         description="Play policy A against policy B (seats swapped each game), or a replay back.",
     )
     parser.add_argument(

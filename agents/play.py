@@ -18,12 +18,13 @@ import time
 from collections.abc import Callable, Collection, Iterable, Sequence
 from typing import Any
 
-from . import common
 from vooga_env.actions import Action
 from vooga_env.config import FightConfig
 from vooga_env.match import EpisodeRecord, episode_seeds
 from vooga_env.policies import Policy
 from vooga_env.replay import Replay
+
+from . import common
 
 try:
     import pygame
@@ -137,7 +138,7 @@ def run_play(
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
-        prog="python -m agents.play",
+        prog="vooga-play",
         description="Fight a policy with the keyboard.",
         epilog=__doc__.split("\n\n", 2)[2],
         formatter_class=argparse.RawDescriptionHelpFormatter,

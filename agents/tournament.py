@@ -14,16 +14,15 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from . import common
 from vooga_env.elo import DRAW_SCORE, Tournament, round_robin
 from vooga_env.policies import SCRIPTED
 
-DEFAULT_OUT = "runs/tournament.json"
+from . import common
 
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
-        prog="python -m agents.tournament",
+        prog="vooga-tournament",
         description="Round-robin of the scripted fighters and saved models, with Elo ratings.",
     )
     parser.add_argument(
@@ -36,7 +35,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--models", nargs="*", default=[], metavar="ZIP", help="saved models")
     common.add_fight_options(parser, episodes=20)
     parser.add_argument(
-        "--out", default=DEFAULT_OUT, help=f"where to write the table (default {DEFAULT_OUT})"
+        "--out", help="write the table and every match to this JSON file (default: none)"
     )
     common.add_output_options(parser)
     return parser
@@ -58,13 +57,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     finally:
         close()
     output = tournament.to_dict()
-    output["out"] = args.out
-    common.write_json(args.out, output)
+    if args.out:
+        output["out"] = args.out
+        common.write_json(args.out, output)
     if args.json:
         common.print_json(output)
     else:
         print(format_tournament(tournament))
-        print(f"written to {args.out}")
+        if args.out:
+            print(f"written to {args.out}")
     return 0
 
 

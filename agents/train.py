@@ -28,6 +28,10 @@ from stable_baselines3.common.env_util import make_vec_env
 from stable_baselines3.common.utils import set_random_seed
 from stable_baselines3.common.vec_env import DummyVecEnv, VecEnv, VecNormalize
 
+from vooga_env.config import ConfigError
+from vooga_env.gym_env import FightEnv
+from vooga_env.models import load_model
+
 from .callbacks import (
     NORMALIZER_FILE,
     STATE_FILE,
@@ -37,9 +41,6 @@ from .callbacks import (
     save_checkpoint,
 )
 from .train_config import TrainConfig, load_train_config
-from vooga_env.config import ConfigError
-from vooga_env.gym_env import FightEnv
-from vooga_env.models import load_model
 
 
 def make_envs(config: TrainConfig) -> VecEnv:
@@ -170,7 +171,7 @@ def train(
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="vooga-train", description=__doc__.splitlines()[0])
     parser.add_argument("--config", default="default", help="a name in configs/train or a path")
     parser.add_argument("--out", type=Path, help="run folder (default runs/CONFIG)")
     parser.add_argument("--seed", type=int)

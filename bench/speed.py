@@ -11,8 +11,8 @@
    the same n_envs, n_steps and network (torch on one thread for both).
 4. Memory: the bytes of a 4096-fight batch's state arrays, and this process's peak RSS.
 
-Every rate is the best of a few timed rounds, ours and the reference's alternating, so that a
-busy machine slows both alike; ratios are ours / reference.
+Every figure is the median of several timed rounds, ours and the reference's interleaved so that
+a busy machine slows both alike; a ratio is the median of the rounds' ours / reference.
 
     python -m bench.speed                  # the full run (a couple of minutes)
     python -m bench.speed --quick          # a few rounds each, for CI (seconds)
@@ -27,6 +27,7 @@ import json
 import os
 import platform
 import resource
+import statistics
 import sys
 import time
 from collections.abc import Callable, Sequence
@@ -36,32 +37,37 @@ import gymnasium
 import numpy as np
 
 import vooga_env
-from vooga_env.vector import VectorFight, numba_available
+from vooga_env.vector import VectorFight
 
 SIZES = (1, 16, 256, 1024, 4096)
 
 
-def best_rate(run: Callable[[int], int], seconds: float, rounds: int) -> float:
-    """The best of `rounds` rates of `run(k)` (which does k units of work and returns the count)."""
-    best = 0.0
-    for _ in range(rounds):
-        count, start, elapsed = 0, time.perf_counter(), 0.0
-        while elapsed < seconds:
-            count += run(64)
-            elapsed = time.perf_counter() - start
-        best = max(best, count / elapsed)
-    return best
+def rate(run: Callable[[int], int], seconds: float) -> float:
+    """Units per second of `run(k)` (which does k units of work and returns the count)."""
+    count, start, elapsed = 0, time.perf_counter(), 0.0
+    while elapsed < seconds:
+        count += run(64)
+        elapsed = time.perf_counter() - start
+    return count / elapsed
+
+
+def interleaved(
+    ours: Callable[[], float], reference: Callable[[], float], rounds: int
+) -> tuple[float, float, float]:
+    """Medians of `rounds` measurements of each, alternating: (ours, reference, ratio)."""
+    pairs = [(ours(), reference()) for _ in range(rounds)]
+    return (
+        statistics.median(a for a, _ in pairs),
+        statistics.median(b for _, b in pairs),
+        statistics.median(a / b for a, b in pairs),
+    )
 
 
 def side_by_side(
     ours: Callable[[int], int], reference: Callable[[int], int], seconds: float, rounds: int
-) -> tuple[float, float]:
-    """Rates of `ours` and `reference`, in alternating rounds."""
-    rates = [0.0, 0.0]
-    for _ in range(rounds):
-        rates[0] = max(rates[0], best_rate(ours, seconds, 1))
-        rates[1] = max(rates[1], best_rate(reference, seconds, 1))
-    return rates[0], rates[1]
+) -> tuple[float, float, float]:
+    """Median rates of `ours` and `reference` over interleaved rounds, and their median ratio."""
+    return interleaved(lambda: rate(ours, seconds), lambda: rate(reference, seconds), rounds)
 
 
 def gymnasium_steps(env: gymnasium.Env) -> Callable[[int], int]:
@@ -130,8 +136,8 @@ def gym_steps() -> Callable[[int], int]:
     return gymnasium_steps(gymnasium.make("vooga_env/Fight-v0", opponent="random"))
 
 
-def batched_steps(size: int, backend: str, threads: int | None = None) -> Callable[[int], int]:
-    fights = VectorFight(size, backend=backend, threads=threads)
+def batched_steps(size: int, threads: int) -> Callable[[int], int]:
+    fights = VectorFight(size, threads=threads)
     fights.reset(seed=0)
     actions = np.random.default_rng(0).integers(10, size=(16, size, 2))
     fights.step(actions[0])  # compiles (or loads) the numba kernel before any timing
@@ -184,23 +190,21 @@ def ppo_rows(n_envs: int, n_steps: int, iterations: int, rounds: int) -> list[di
         ]
         rows = []
         for name, make in setups:
-            ours = reference = 0.0
-            for _ in range(rounds):
-                ours = max(ours, ppo_rate(make, n_steps, iterations))
-                reference = max(
-                    reference,
-                    ppo_rate(
-                        lambda: make_vec_env("CartPole-v1", n_envs=n_envs), n_steps, iterations
-                    ),
-                )
-            rows.append(row(name, ours, reference, n_envs=n_envs, n_steps=n_steps))
+            measured = interleaved(
+                lambda make=make: ppo_rate(make, n_steps, iterations),
+                lambda: ppo_rate(
+                    lambda: make_vec_env("CartPole-v1", n_envs=n_envs), n_steps, iterations
+                ),
+                rounds,
+            )
+            rows.append(row(name, *measured, n_envs=n_envs, n_steps=n_steps))
         return rows
     finally:
         torch.set_num_threads(threads)
 
 
-def row(name: str, ours: float, reference: float, **extra: object) -> dict:
-    return {"name": name, "ours": ours, "reference": reference, "ratio": ours / reference, **extra}
+def row(name: str, ours: float, reference: float, ratio: float, **extra: object) -> dict:
+    return {"name": name, "ours": ours, "reference": reference, "ratio": ratio, **extra}
 
 
 def peak_rss_bytes() -> int:
@@ -253,8 +257,7 @@ def main(argv: Sequence[str] | None = None) -> dict:
     parser.add_argument("--sizes", type=parse_sizes, default=SIZES, help="batch sizes, e.g. 1,16")
     parser.add_argument("--no-ppo", action="store_true", help="skip the PPO comparison")
     args = parser.parse_args(argv)
-    seconds, rounds = (0.05, 1) if args.quick else (1.0, 3)
-    backends = ["numba", "numpy"] if numba_available() else ["numpy"]
+    seconds, rounds = (0.05, 1) if args.quick else (1.0, 5)
 
     single = []
     default_backend = vooga_env.parallel_env().backend
@@ -264,33 +267,20 @@ def main(argv: Sequence[str] | None = None) -> dict:
         ("Gymnasium env (vs random)", gym_steps),
         ("ParallelEnv.step, backend='engine'", lambda: parallel_steps("engine")),
     ):
-        rate, reference = side_by_side(ours(), cartpole_steps(), seconds, rounds)
-        single.append(row(name, rate, reference))
+        single.append(row(name, *side_by_side(ours(), cartpole_steps(), seconds, rounds)))
     print_table("single env, steps/s", single, "steps/s", "CartPole-v1 steps/s")
 
     batched = []
-    for backend in backends:
-        for size in args.sizes:
-            # the default thread count, and one thread as well where the default is more
-            default = VectorFight(size, backend=backend).threads
-            for threads in dict.fromkeys((default, 1)):
-                rate, reference = side_by_side(
-                    batched_steps(size, backend, threads),
-                    cartpole_vector_steps(size),
-                    seconds,
-                    rounds,
-                )
-                label = f"{threads} thread{'s' if threads > 1 else ''}"
-                batched.append(
-                    row(
-                        f"VectorFight N={size} ({backend}, {label})",
-                        rate,
-                        reference,
-                        n=size,
-                        backend=backend,
-                        threads=threads,
-                    )
-                )
+    for size in args.sizes:
+        # one thread (the default) everywhere; two as well where a batch is worth cutting
+        for threads in (1, 2) if size >= 256 else (1,):
+            measured = side_by_side(
+                batched_steps(size, threads), cartpole_vector_steps(size), seconds, rounds
+            )
+            label = f"{threads} thread{'s' if threads > 1 else ''}"
+            batched.append(
+                row(f"VectorFight N={size} ({label})", *measured, n=size, threads=threads)
+            )
     print_table("batched, env-steps/s", batched, "env-steps/s", "CartPole make_vec")
 
     ppo: list[dict] = []
@@ -298,7 +288,7 @@ def main(argv: Sequence[str] | None = None) -> dict:
         print("\nPPO: skipped, stable-baselines3 is not installed (the `train` extra)")
     elif not args.no_ppo:
         n_envs, n_steps = 16, 32 if args.quick else 128
-        ppo = ppo_rows(n_envs, n_steps, 1 if args.quick else 4, 1 if args.quick else 5)
+        ppo = ppo_rows(n_envs, n_steps, 1 if args.quick else 4, rounds)
         print_table(
             f"PPO learn(), n_envs={n_envs}, n_steps={n_steps}",
             ppo,
@@ -306,7 +296,7 @@ def main(argv: Sequence[str] | None = None) -> dict:
             "PPO CartPole steps/s",
         )
 
-    batch = VectorFight(4096, backend="numpy")
+    batch = VectorFight(4096)
     batch.reset(seed=0)
     memory = {"state_bytes_4096": batch.state.nbytes, "peak_rss_bytes": peak_rss_bytes()}
     print("\nmemory")

@@ -2,7 +2,8 @@
 
 - `vooga_env.parallel_env(**kwargs)`: the PettingZoo ParallelEnv; `vooga_env.env(**kwargs)`: AEC.
 - `gymnasium.make("vooga_env/Fight-v0", opponent="rush")`: one fighter against a scripted or saved
-  opponent (variants: FightWater-v0, FightPlatforms-v0, FightSmall-v0).
+  opponent (variants: FightWater-v0, FightPlatforms-v0, FightSmall-v0); `gymnasium.make_vec(...,
+  vectorization_mode="vector_entry_point")` gives the batched engine as a `VectorEnv`.
 - `vooga_env.physics`: the engine alone (no gymnasium or pettingzoo inside).
 
 The env names load on first use, so that `import vooga_env.physics` needs neither gymnasium nor
@@ -52,7 +53,10 @@ def _register() -> None:
     for env_id, config in GYM_IDS.items():
         if env_id not in gymnasium.registry:
             gymnasium.register(
-                env_id, entry_point="vooga_env.gym_env:FightEnv", kwargs={"config": config}
+                env_id,
+                entry_point="vooga_env.gym_env:FightEnv",
+                vector_entry_point="vooga_env.gym_vector:FightVectorEnv",
+                kwargs={"config": config},
             )
 
 

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import functools
 from pathlib import Path
 from typing import Any
 
@@ -16,6 +15,7 @@ from vooga_env.actions import Action, action_index
 from vooga_env.config import FightConfig, load_config
 from vooga_env.fight import Fight
 from vooga_env.observations import HIGH, LOW, OBSERVATION_SIZE
+from vooga_env.render import frames_per_second
 from vooga_env.rewards import RewardFn
 from vooga_env.simulation import DRAW, GOING_ON, INFO_KEYS, make_simulation
 
@@ -89,22 +89,18 @@ class FightParallelEnv(ParallelEnv):
         self.simulation = make_simulation(self.config, backend, reward_fn, render_mode)
         self.possible_agents = list(AGENTS)
         self.agents: list[str] = []
-        self.metadata = {
-            **self.metadata,
-            "render_fps": round(1000.0 / (self.config.physics.frame_time * self.config.frame_skip)),
-        }
+        self.metadata = {**self.metadata, "render_fps": frames_per_second(self.config)}
         self._np_random, _ = seeding.np_random(None)
         self._observation_space = spaces.Box(LOW, HIGH, (OBSERVATION_SIZE,), np.float32)
         self._action_space = spaces.Discrete(len(Action))
         self.state_space = spaces.Box(LOW, HIGH, (2 * OBSERVATION_SIZE,), np.float32)
         self._viewer = None
 
-    @functools.cache  # noqa: B019 - PettingZoo wants the same object every call
     def observation_space(self, agent: str) -> spaces.Box:
+        """The same object on every call (PettingZoo asks for that), held by this env alone."""
         self._check_agent(agent)
         return self._observation_space
 
-    @functools.cache  # noqa: B019
     def action_space(self, agent: str) -> spaces.Discrete:
         self._check_agent(agent)
         return self._action_space
@@ -176,7 +172,9 @@ class FightParallelEnv(ParallelEnv):
         """Both fighters' observations, fighter_0's first."""
         return self.simulation.observe().reshape(-1)
 
-    def render(self) -> np.ndarray | None:
+    def render(self, *_: Any) -> np.ndarray | None:
+        """The frame (rgb_array) or a window update (human); extra arguments are ignored, as
+        RLlib's `ParallelPettingZooEnv.render()` passes one."""
         if self.render_mode is None:
             return None
         if self._viewer is None:
@@ -189,6 +187,10 @@ class FightParallelEnv(ParallelEnv):
         if self._viewer is not None:
             self._viewer.close()
             self._viewer = None
+
+    def __getstate__(self) -> dict[str, Any]:
+        """Everything but the viewer (pygame surfaces don't pickle); a copy draws afresh."""
+        return {**self.__dict__, "_viewer": None}
 
     def _read_actions(self, actions: dict[str, Any]) -> tuple[int, int]:
         if type(actions) is dict and len(actions) == 2:  # the usual case, checked quickly

@@ -7,9 +7,11 @@ pygame is imported here only, when a render mode is asked for; `rgb_array` works
 from __future__ import annotations
 
 import os
+import warnings
 
 import numpy as np
 
+from vooga_env.config import FightConfig
 from vooga_env.fight import Fight
 from vooga_env.hits import Fighter
 
@@ -20,6 +22,25 @@ STAGE_EDGE = (200, 190, 165)
 FIGHTER_COLOURS = ((220, 70, 70), (70, 130, 230))
 HITBOX = (255, 220, 60)
 TEXT = (235, 235, 235)
+
+
+def frames_per_second(config: FightConfig) -> int:
+    """Env steps per second of game time: what a window shows in real time."""
+    return round(1000.0 / (config.physics.frame_time * config.frame_skip))
+
+
+HEADLESS_DRIVERS = ("dummy", "offscreen")
+
+
+def warn_if_headless(driver: str) -> None:
+    """Say (once: a warning) that a human-mode window goes nowhere, rather than run blind."""
+    if driver in HEADLESS_DRIVERS:
+        warnings.warn(
+            f"render_mode='human' but pygame found no display (video driver {driver!r}): nothing "
+            "is shown. Set DISPLAY (or run under xvfb-run), or use render_mode='rgb_array'.",
+            RuntimeWarning,
+            stacklevel=3,
+        )
 
 
 class Viewer:
@@ -47,6 +68,7 @@ class Viewer:
             self.window = pygame.display.set_mode(self.size)
             pygame.display.set_caption("vooga_env")
             self.clock = pygame.time.Clock()
+            warn_if_headless(pygame.display.get_driver())
 
     def draw(self) -> np.ndarray | None:
         """Draw the current frame; an HxWx3 uint8 array in rgb_array mode, None in human mode."""

@@ -200,6 +200,13 @@ def test_tournament_prints_and_writes_elo(tmp_path, capsys):
     assert "score % of the row against the column" in text
 
 
+def test_tournament_writes_no_file_unasked(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    argv = ["--scripted", "rush", "idle", "--episodes", "1", "--max-cycles", "50", "--json"]
+    assert "out" not in run_json(tournament.main, argv, capsys)
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_tournament_refuses_a_bad_entrant(capsys):
     with pytest.raises(SystemExit):
         tournament.main(["--scripted", "rush", "--models", "nope.zip"])

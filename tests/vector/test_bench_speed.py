@@ -36,11 +36,11 @@ def test_quick_speed_benchmark_prints_tables_and_writes_json(tmp_path):
         "ParallelEnv.step, backend='engine'",
     ]
     assert {row["n"] for row in report["batched"]} == {1, 16}
-    assert {row["backend"] for row in report["batched"]} >= {"numpy"}
+    assert {row["threads"] for row in report["batched"]} == {1}  # two only from N = 256
     assert len(report["ppo"]) == 2
     for row in report["single"] + report["batched"] + report["ppo"]:
         assert row["ours"] > 0 and row["reference"] > 0 and math.isfinite(row["ratio"])
-        assert row["ratio"] == pytest.approx(row["ours"] / row["reference"])
+        assert row["ratio"] == pytest.approx(row["ours"] / row["reference"])  # one round
         assert row["name"] in result.stdout  # the table shows every row
     memory = report["memory"]
     assert 0 < memory["state_bytes_4096"] < 64 * 2**20

@@ -105,13 +105,9 @@ def test_bad_arguments_fail_clearly():
         VectorFight(2, backend="numpy", threads=2)
 
 
-def test_threads_default_to_one_per_core_for_big_batches_only():
-    pytest.importorskip("numba")
-    import numba
-
-    assert VectorFight(16, backend="numba").threads == 1
-    big = VectorFight(4096, backend="numba")
-    assert big.threads == min(numba.get_num_threads(), 4096 // 256)
+def test_one_thread_unless_more_are_asked_for():
+    assert VectorFight(4096, backend="numba").threads == 1
+    assert VectorFight(4096, backend="numba", threads=2).threads == 2
     assert VectorFight(8, backend="numba", threads=32).threads == 8  # never more than fights
 
 

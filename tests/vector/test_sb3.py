@@ -135,3 +135,72 @@ def test_batched_random_fighter_covers_the_actions():
         "random", np.zeros((5000, 41), np.float32), np.linspace(0, 1, 5000, endpoint=False)
     )
     assert set(actions.tolist()) == set(range(10))
+
+
+def test_episode_infos_are_monitors_and_ppo_logs_them(one_torch_thread):
+    env = FightVecEnv(4, opponent="random", opponent_seed=0, max_cycles=25)
+    env.seed(3)
+    env.reset()
+    returns, lengths, seen = np.zeros(4), np.zeros(4, dtype=int), 0
+    rng = np.random.default_rng(0)
+    for _ in range(60):
+        _, rewards, dones, infos = env.step(rng.integers(0, 10, 4))
+        returns += rewards
+        lengths += 1
+        for slot in np.flatnonzero(dones):
+            episode = infos[slot]["episode"]
+            assert episode["l"] == lengths[slot]
+            assert episode["r"] == pytest.approx(returns[slot], abs=1e-4)
+            assert episode["t"] >= 0.0
+            returns[slot], lengths[slot], seen = 0.0, 0, seen + 1
+        assert all("episode" not in infos[s] for s in np.flatnonzero(~dones))
+    assert seen >= 8  # every fight ended at least twice (truncation at 25)
+    model = PPO("MlpPolicy", FightVecEnv(4, max_cycles=16), n_steps=32, batch_size=64, seed=0)
+    model.learn(256)
+    assert len(model.ep_info_buffer) > 0  # SB3 found the episodes without a Monitor
+
+
+def test_env_method_set_opponent_swaps_the_batch_opponent():
+    env = FightVecEnv(3, opponent="idle")
+    assert env.env_method("set_opponent", "turtle", seed=1) == [None, None, None]
+    assert [o.name for o in env.get_attr("opponent")] == ["turtle"] * 3
+    with pytest.raises(ValueError, match="unknown scripted fighter 'nobody'"):
+        env.env_method("set_opponent", "nobody")
+    with pytest.raises(ValueError, match="self-play"):
+        FightVecEnv(2).set_opponent("rush")
+
+
+def test_render_draws_fight_zero_as_the_engine_shows_it():
+    env = FightVecEnv(3, render_mode="rgb_array", max_cycles=15)  # self-play: both actions ours
+    env.seed(7)
+    env.reset()
+    single = vooga_env.parallel_env(render_mode="rgb_array", max_cycles=15)
+    single.reset(seed=7)  # fight 0 of the batch; it auto-resets, the single env is reset by hand
+    actions = np.random.default_rng(1).integers(0, 10, (40, 6))
+    for step, slots in enumerate(actions):
+        frame = env.render()
+        assert frame.shape == (480, 800, 3) and frame.dtype == np.uint8
+        assert np.array_equal(frame, single.render()), f"step {step}"
+        env.step(slots)
+        single.step({"fighter_0": int(slots[0]), "fighter_1": int(slots[1])})
+        if not single.agents:
+            single.reset()
+
+
+def test_vec_video_recorder_writes_a_video(tmp_path):
+    pytest.importorskip("moviepy")
+    from stable_baselines3.common.vec_env import VecVideoRecorder
+
+    env = FightVecEnv(2, opponent="rush", render_mode="rgb_array", max_cycles=10)
+    recorder = VecVideoRecorder(env, str(tmp_path), lambda step: step == 0, video_length=12)
+    recorder.reset()
+    for _ in range(14):
+        recorder.step(np.zeros(2, dtype=int))
+    recorder.close()
+    videos = list(tmp_path.glob("*.mp4"))
+    assert videos and videos[0].stat().st_size > 1000
+
+
+def test_the_batch_refuses_a_render_mode_it_cannot_draw():
+    with pytest.raises(ValueError, match="render_mode must be None or 'rgb_array', got 'human'"):
+        FightVecEnv(2, render_mode="human")

@@ -10,6 +10,8 @@ vooga_env.vector.cache` compiles them all ahead of a first step (`make` does it 
 from __future__ import annotations
 
 import hashlib
+import os
+import sys
 from pathlib import Path
 from types import ModuleType
 
@@ -26,14 +28,21 @@ SOURCES = (
 )
 
 
-def drop_stale_kernel_cache() -> None:
-    """Delete the kernel's cached machine code if its sources changed since it was cached."""
+# numba's OpenMP pool shares libgomp with torch and changes torch's thread count when it starts;
+# the work-queue layer has no such side effect. Used only where `threads` > 1 is asked for.
+THREADING_LAYER = "workqueue"
+_announced = False
+
+
+def drop_stale_kernel_cache() -> bool:
+    """Delete the kernel's cached machine code if its sources changed since it was cached;
+    whether a current cache is there."""
     digest = hashlib.sha256(b"".join(path.read_bytes() for path in SOURCES)).hexdigest()
     cache = HERE / "__pycache__"
     stamp = cache / "kernel_sources.sha256"
     try:
         if stamp.read_text() == digest:
-            return
+            return any(cache.glob("kernel*.nbi"))
     except OSError:
         pass
     for path in cache.glob("kernel*.nb[ci]"):
@@ -43,11 +52,25 @@ def drop_stale_kernel_cache() -> None:
         stamp.write_text(digest)
     except OSError:  # a read-only install: numba caches elsewhere (NUMBA_CACHE_DIR) or not at all
         pass
+    return False
 
 
 def load_kernel() -> ModuleType:
-    """The compiled kernel's module (numba needed), its stale cache dropped first."""
-    drop_stale_kernel_cache()
+    """The compiled kernel's module, its stale cache dropped first; says once on stderr when
+    the first step will compile (some 20 s, once per install) rather than stall without a word."""
+    global _announced
+    import numba
+
+    if "NUMBA_THREADING_LAYER" not in os.environ:
+        numba.config.THREADING_LAYER = THREADING_LAYER
+    if not drop_stale_kernel_cache() and not _announced:
+        _announced = True
+        print(
+            "vooga_env: compiling the fight kernels with numba (about 20 s, once per install; "
+            "cached on disk afterwards)...",
+            file=sys.stderr,
+            flush=True,
+        )
     from vooga_env.vector import kernel
 
     return kernel

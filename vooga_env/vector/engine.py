@@ -9,7 +9,8 @@ Fight i behaves exactly as `parallel_env(config).reset(seed=seed + i)` followed 
 fight that ends is reset in the same `step`; its last observation is `info["final_observation"]`.
 `backend="numpy"` steps with array operations, `"numba"` with compiled loops (the `fast` extra),
 `"auto"` picks numba when it is installed. The numba backend steps the fights in `threads` chunks
-at once (default: one per core, from 256 fights a thread on); the results do not depend on it.
+at once (default one; more is a choice for an otherwise idle machine); the results do not depend
+on it.
 """
 
 from __future__ import annotations
@@ -27,7 +28,6 @@ from vooga_env.vector.params import FightParams, check_supported
 from vooga_env.vector.state import FightState, StepEvents
 
 BACKENDS = ("auto", "numpy", "numba")
-THREADED_FIGHTS = 256  # fewer fights than this a thread: the threads' start-up costs more
 
 
 def numba_available() -> bool:
@@ -47,7 +47,7 @@ class VectorFight:
         config: str | Path | FightConfig = "default",
         backend: str = "auto",
         reward_fn: Any = None,
-        threads: int | None = None,
+        threads: int = 1,
         **overrides: Any,
     ) -> None:
         if isinstance(num_fights, bool) or not isinstance(num_fights, (int, np.integer)):
@@ -80,22 +80,18 @@ class VectorFight:
         self._needs_reset = True
         self._seeded = False
 
-    def _thread_count(self, threads: int | None) -> int:
-        """Threads for the numba backend's step: as asked, or (None) one per core from
-        `THREADED_FIGHTS` fights a thread on; the numpy backend runs on one."""
-        if threads is not None:
-            if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)):
-                raise TypeError(f"threads must be an int or None, got {threads!r}")
-            if threads < 1:
-                raise ValueError(f"threads must be >= 1, got {threads}")
-            if threads > 1 and self._kernel is None:
-                raise ValueError(f"threads = {threads} needs backend='numba' (numpy runs on one)")
-            return int(min(threads, self.num_fights))
-        if self._kernel is None:
-            return 1
-        import numba
-
-        return max(1, min(numba.get_num_threads(), self.num_fights // THREADED_FIGHTS))
+    def _thread_count(self, threads: int) -> int:
+        """Threads for the numba backend's step, one unless asked: a second thread gains
+        1.5-2x on an idle machine but waits on its descheduled worker when another process
+        (a trainer) holds the other core, down to 0.04x of one thread; the numpy backend runs
+        on one."""
+        if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)):
+            raise TypeError(f"threads must be an int >= 1, got {threads!r}")
+        if threads < 1:
+            raise ValueError(f"threads must be >= 1, got {threads}")
+        if threads > 1 and self._kernel is None:
+            raise ValueError(f"threads = {threads} needs backend='numba' (numpy runs on one)")
+        return int(min(threads, self.num_fights))
 
     @property
     def observation_shape(self) -> tuple[int, int, int]:

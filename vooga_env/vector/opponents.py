@@ -8,6 +8,8 @@ per-fighter streams of the scalar policies, so a game against it is not the same
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from vooga_env.actions import Action
@@ -134,6 +136,20 @@ def _check_seed(seed: object) -> None:
         isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)) or seed < 0
     ):
         raise ValueError(f"opponent seed must be a non-negative int or None, got {seed!r}")
+
+
+def batch_opponent(opponent: Any, seed: int | None = None) -> Any:
+    """A scripted fighter's name as a `VectorOpponent`, or an object that already has
+    `act(observations (n, 41)) -> actions (n,)`; anything else is refused, naming it."""
+    if isinstance(opponent, str):
+        return VectorOpponent(opponent, seed)
+    if callable(getattr(opponent, "act", None)):
+        return opponent
+    raise TypeError(
+        "opponent must be a scripted fighter's name "
+        f"({', '.join(NAMES)}) or an object with act(observations) -> actions for a batch, "
+        f"got {opponent!r}"
+    )
 
 
 class VectorOpponent:

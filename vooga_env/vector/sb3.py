@@ -10,14 +10,22 @@ Two ways to fill the slots:
 
 SB3's conventions: `reset()` returns the observations only; `seed(seed)` seeds fight i with
 `seed + i` at the next `reset()`; a fight that ends is reset at once, and its slots' infos carry
-`terminal_observation`, `TimeLimit.truncated` (True when the time ran out) and `winner`
-("win", "loss" or "draw", from the slot's side). With `info_events=True` every step's infos
-also carry the slot's `damage_dealt`, `damage_taken`, `hits_landed`, `hits_blocked`, `rung_out`
-and `knocked_out` (off by default: a dict per slot and step costs more than the fights do).
+`terminal_observation`, `TimeLimit.truncated` (True when the time ran out), `winner` ("win",
+"loss" or "draw", from the slot's side) and `episode` (`r` return, `l` length, `t` seconds since
+the env was made), as SB3's `Monitor` writes it, so PPO logs `ep_rew_mean` with no wrapper. With
+`info_events=True` every step's infos also carry the slot's `damage_dealt`, `damage_taken`,
+`hits_landed`, `hits_blocked`, `rung_out` and `knocked_out` (off by default: a dict per slot and
+step costs more than the fights do).
+
+`render_mode="rgb_array"`: `render()` draws fight 0 (a `Spectator` replays it on the physics
+engine), so `VecVideoRecorder` works. `env_method("set_opponent", name)` swaps the opponent; the
+slots share one batch, so `env_method`, `get_attr` and `set_attr` act on the batch once and
+answer for every slot asked.
 """
 
 from __future__ import annotations
 
+import time
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -29,8 +37,9 @@ from stable_baselines3.common.vec_env import VecEnv
 from vooga_env.actions import Action
 from vooga_env.config import FightConfig
 from vooga_env.observations import HIGH, LOW, OBSERVATION_SIZE
+from vooga_env.spectator import Spectator
 from vooga_env.vector.engine import VectorFight
-from vooga_env.vector.opponents import VectorOpponent
+from vooga_env.vector.opponents import batch_opponent
 
 _EVENTS = ("damage_dealt", "damage_taken", "hits_landed", "hits_blocked", "rung_out", "knocked_out")
 
@@ -63,23 +72,18 @@ class FightVecEnv(VecEnv):
         backend: str = "auto",
         opponent_seed: int | None = None,
         info_events: bool = False,
+        render_mode: str | None = None,
+        threads: int = 1,
         **overrides: Any,
     ) -> None:
         if seat not in (0, 1):
             raise ValueError(f"seat must be 0 or 1, got {seat!r}")
-        self.fights = VectorFight(num_fights, config, backend=backend, **overrides)
-        self.render_mode = None
-        if opponent is None:
-            self.opponent = None
-        elif isinstance(opponent, str):
-            self.opponent = VectorOpponent(opponent, opponent_seed)
-        elif hasattr(opponent, "act"):
-            self.opponent = opponent
-        else:
-            raise TypeError(
-                f"opponent must be None (self-play), a scripted fighter's name or an object with "
-                f"act(observations) -> actions, got {opponent!r}"
-            )
+        if render_mode not in (None, "rgb_array"):
+            raise ValueError(f"render_mode must be None or 'rgb_array', got {render_mode!r}")
+        self.fights = VectorFight(num_fights, config, backend=backend, threads=threads, **overrides)
+        self.render_mode = render_mode
+        self._spectator = Spectator(self.fights.config) if render_mode else None
+        self.opponent = None if opponent is None else batch_opponent(opponent, opponent_seed)
         self.seat = seat
         self.info_events = info_events
         self.self_play = self.opponent is None
@@ -92,6 +96,9 @@ class FightVecEnv(VecEnv):
         self._fight_seeds: list[int] | None = None
         self._actions: np.ndarray | None = None
         self._observations: np.ndarray | None = None  # (N, 2, 41), the latest
+        self._returns = np.zeros(slots)
+        self._lengths = np.zeros(slots, dtype=np.int64)
+        self._start = time.time()
 
     @property
     def config(self) -> FightConfig:
@@ -106,9 +113,21 @@ class FightVecEnv(VecEnv):
         per_slot = 2 if self.self_play else 1
         return [s for s in self._fight_seeds for _ in range(per_slot)]
 
+    def set_opponent(self, opponent: Any, seed: int | None = None) -> None:
+        """Fight `opponent` (a scripted name or a batch `act`) from the next step on."""
+        if self.self_play:
+            raise ValueError("set_opponent: this FightVecEnv is self-play (opponent=None)")
+        self.opponent = batch_opponent(opponent, seed)
+
     def reset(self) -> np.ndarray:
-        observations = self.fights.reset(seed=self._fight_seeds)
+        if self._fight_seeds is not None or self._observations is None:
+            self.fights.seed(self._fight_seeds)  # None, the first time: from entropy
+        if self._spectator is not None:
+            self._spectator.reset(self.fights.state.rng.get_state(0))
+        observations = self.fights.reset()
         self._fight_seeds = None
+        self._returns[:] = 0.0
+        self._lengths[:] = 0
         self._reset_seeds()
         self._reset_options()
         if self.opponent is not None and hasattr(self.opponent, "reset"):
@@ -137,41 +156,47 @@ class FightVecEnv(VecEnv):
             opponent_obs = self._observations[:, 1 - self.seat]
             pairs[:, 1 - self.seat] = _opponent_actions(self.opponent, opponent_obs)
         observations, rewards, terminated, truncated, info = self.fights.step(pairs)
+        if self._spectator is not None:
+            self._spectator.step(int(pairs[0, 0]), int(pairs[0, 1]))
         self._observations = observations
         self._actions = None
-        done = terminated | truncated
-        infos = self._infos(info, truncated)
         if self.self_play:
-            return (
-                observations.reshape(-1, OBSERVATION_SIZE),
-                rewards.reshape(-1).astype(np.float32),
-                np.repeat(done, 2),
-                infos,
-            )
-        return (
-            observations[:, self.seat],
-            rewards[:, self.seat].astype(np.float32),
-            done,
-            infos,
-        )
+            slot_rewards, done = rewards.reshape(-1), np.repeat(terminated | truncated, 2)
+        else:
+            slot_rewards, done = rewards[:, self.seat], terminated | truncated
+        self._returns += slot_rewards
+        self._lengths += 1
+        infos = self._infos(info, truncated)
+        return self._slots(observations), slot_rewards.astype(np.float32), done, infos
+
+    def render(self, mode: str | None = None) -> np.ndarray | None:
+        """Fight 0's frame, (H, W, 3) uint8, when made with `render_mode="rgb_array"`."""
+        if self._spectator is None:
+            return None
+        if mode not in (None, "rgb_array"):
+            raise ValueError(f"render mode must be 'rgb_array', got {mode!r}")
+        return self._spectator.render()
 
     def close(self) -> None:
-        pass
+        if self._spectator is not None:
+            self._spectator.close()
 
     def get_attr(self, attr_name: str, indices: Any = None) -> list[Any]:
-        return [getattr(self, attr_name) for _ in self._get_indices(indices)]
+        value = getattr(self, attr_name)
+        return [value for _ in self._get_indices(indices)]
 
     def set_attr(self, attr_name: str, value: Any, indices: Any = None) -> None:
         setattr(self, attr_name, value)
 
     def env_method(self, method_name: str, *args: Any, indices: Any = None, **kwargs: Any):
-        return [getattr(self, method_name)(*args, **kwargs) for _ in self._get_indices(indices)]
+        result = getattr(self, method_name)(*args, **kwargs)
+        return [result for _ in self._get_indices(indices)]
 
     def env_is_wrapped(self, wrapper_class: type, indices: Any = None) -> list[bool]:
         return [False for _ in self._get_indices(indices)]
 
     def get_images(self) -> Sequence[np.ndarray | None]:
-        return [None for _ in range(self.num_envs)]
+        return [self.render()] + [None] * (self.num_envs - 1)
 
     # --- helpers
     def _slots(self, observations: np.ndarray) -> np.ndarray:
@@ -191,6 +216,7 @@ class FightVecEnv(VecEnv):
             ]
         else:
             infos = [{} for _ in range(self.num_envs)]
+        elapsed = round(time.time() - self._start, 6)
         for row, fight in enumerate(info["done_index"].tolist()):
             winner = int(info["winner"][fight])
             for seat in seats:
@@ -201,6 +227,13 @@ class FightVecEnv(VecEnv):
                 slot_info["winner"] = (
                     "draw" if winner < 0 else ("win" if winner == seat else "loss")
                 )
+                slot_info["episode"] = {
+                    "r": float(self._returns[slot]),
+                    "l": int(self._lengths[slot]),
+                    "t": elapsed,
+                }
+                self._returns[slot] = 0.0
+                self._lengths[slot] = 0
         return infos
 
     def __repr__(self) -> str:
