@@ -1,146 +1,104 @@
 """Fight any policy yourself, with the keyboard, in a pygame window.
 
     python -m agents.play rush
-    python -m agents.play runs/ppo.zip --seat 1 --save-replay runs/me_vs_ppo.json
+    python -m agents.play runs/ppo.zip --seat 1 --rounds 3 --speed 0.75 --config platforms
 
-Keys (the seed's InputHandler: keys held map to the fighter's action each step):
-    move: left/right arrows or A/D     jump: up arrow, W or space (with a direction: jump that way)
-    crouch / fast-fall: down arrow or S
-    punch: J or Z    kick: K or X    block: L or C    quit: Esc or close the window
-Several keys at once: block beats kick beats punch beats jump beats crouch beats walking.
+Each round opens with a countdown, and ends on a result screen (Enter or Space: next round); a
+match is best of --rounds rounds, of --stocks stocks each (default 3). The round's clock gives
+each stock the config's time (`default`: 900 steps, 36 s at speed 1, so 108 s for 3 stocks)
+unless --max-cycles sets it. On the match's result screen R or Enter plays a new match.
+
+Every round is saved as a replay (the `vooga_env.replay` format; watch it again with
+`python -m agents.match --replay FILE --render`) in --replay-dir, by default runs/play/ under
+the current folder, named <date>-<time>-<opponent>-m<match>-r<round>.json; each path is printed
+as it is written. --no-replay saves nothing.
+
+It needs a display. Without one it stops (exit status 2) and says how to get one; a test or a
+screenshot script can set SDL_VIDEODRIVER=dummy to run it without a window on purpose.
+
 """
 
 from __future__ import annotations
 
 import argparse
+import math
+import os
+import re
 import sys
 import time
-from collections.abc import Callable, Collection, Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
+from pathlib import Path
 from typing import Any
 
-from vooga_env.actions import Action
-from vooga_env.config import FightConfig
-from vooga_env.match import EpisodeRecord, episode_seeds
-from vooga_env.policies import Policy
+from vooga_env.config import ConfigError, FightConfig, load_config
+from vooga_env.match import EpisodeRecord
+from vooga_env.policies import SCRIPTED
+from vooga_env.render import HEADLESS_DRIVERS
 from vooga_env.replay import Replay
 
 from . import common
+from .play_keys import HELP_TEXT
+from .play_loop import SPEED_RANGE, Clock, Game, PlaySettings, check_speed, run
+from .play_screens import Screens
 
-try:
+DEFAULT_REPLAY_DIR = Path("runs/play")
+PLAY_STOCKS = 3
+NO_DISPLAY = (
+    "no display to open the game's window on ({why}).\n"
+    "Run it in a desktop session, or give it a display: over ssh, `ssh -X host` sets DISPLAY; "
+    "for a virtual X display, `apt-get install xvfb` and run it under `xvfb-run -a python -m "
+    "agents.play ...`, or start `Xvfb :99 &` and set DISPLAY=:99. To run with no window on "
+    "purpose (tests, screenshots), set SDL_VIDEODRIVER=dummy."
+)
+
+
+def display_problem() -> str | None:
+    """Why no window can be shown (SDL has no display, or only an off-screen one), or None.
+
+    SDL falls back to its `offscreen` driver without a display: the game would run blind. A
+    driver named in SDL_VIDEODRIVER is the user's choice and is kept, `dummy` included.
+    """
     import pygame
-except ImportError:  # pragma: no cover - pygame is the `render` extra
-    raise ImportError("playing needs pygame: pip install 'vooga-env[render]'") from None
 
-LEFT_KEYS = (pygame.K_LEFT, pygame.K_a)
-RIGHT_KEYS = (pygame.K_RIGHT, pygame.K_d)
-JUMP_KEYS = (pygame.K_UP, pygame.K_w, pygame.K_SPACE)
-DOWN_KEYS = (pygame.K_DOWN, pygame.K_s)
-PUNCH_KEYS = (pygame.K_j, pygame.K_z)
-KICK_KEYS = (pygame.K_k, pygame.K_x)
-BLOCK_KEYS = (pygame.K_l, pygame.K_c)
-QUIT_KEYS = (pygame.K_ESCAPE,)
-
-
-def action_from_keys(held: Collection[int], seat: int = 0) -> Action:
-    """The action for the keys held (pygame key codes), for the fighter in `seat`.
-
-    Left and right are on the screen; `fighter_1`'s actions are mirrored, so for seat 1 the
-    screen's left is its Action.RIGHT.
-    """
-
-    def down(keys: Sequence[int]) -> bool:
-        return any(key in held for key in keys)
-
-    screen = int(down(RIGHT_KEYS)) - int(down(LEFT_KEYS))  # -1 left, 0 none, 1 right
-    direction = screen if seat == 0 else -screen
-    if down(BLOCK_KEYS):
-        return Action.BLOCK
-    if down(KICK_KEYS):
-        return Action.KICK
-    if down(PUNCH_KEYS):
-        return Action.PUNCH
-    if down(JUMP_KEYS):
-        return {-1: Action.JUMP_LEFT, 0: Action.JUMP, 1: Action.JUMP_RIGHT}[direction]
-    if down(DOWN_KEYS):
-        return Action.DOWN
-    return {-1: Action.LEFT, 0: Action.IDLE, 1: Action.RIGHT}[direction]
-
-
-class InputHandler:
-    """Keeps the set of keys held from pygame's key events; `quit` once Esc or the close button."""
-
-    def __init__(self, seat: int = 0) -> None:
-        self.seat = seat
-        self.held: set[int] = set()
-        self.quit = False
-
-    def handle(self, event: Any) -> None:
-        if event.type == pygame.QUIT or (event.type == pygame.KEYDOWN and event.key in QUIT_KEYS):
-            self.quit = True
-        elif event.type == pygame.KEYDOWN:
-            self.held.add(event.key)
-        elif event.type == pygame.KEYUP:
-            self.held.discard(event.key)
-        elif event.type == pygame.WINDOWFOCUSLOST:
-            self.held.clear()  # a key released in another window never sends its KEYUP here
-
-    def action(self) -> Action:
-        return action_from_keys(self.held, self.seat)
-
-
-def run_play(
-    opponent: Policy,
-    seat: int = 0,
-    config: str | FightConfig = "default",
-    seed: int = 0,
-    max_steps: int | None = None,
-    get_events: Callable[[], Iterable[Any]] | None = None,
-    end_pause: float = 0.0,
-) -> tuple[EpisodeRecord, FightConfig]:
-    """One game of the person (keyboard, in `seat`) against `opponent`, in a window.
-
-    `get_events` gives each step's pygame events (default `pygame.event.get`); the game stops at
-    its end, after `max_steps`, or when the person quits. Returns the game (with its actions) and
-    the config, which make a replay.
-    """
-    import vooga_env
-
-    if seat not in (0, 1):
-        raise ValueError(f"seat must be 0 or 1, got {seat!r}")
-    env = vooga_env.parallel_env(config=config, render_mode="human")
-    agents = env.possible_agents
-    env_seed, _, opponent_seed = episode_seeds(seed, 0)
-    names = ("human", opponent.name) if seat == 0 else (opponent.name, "human")
-    seeds = (None, opponent_seed) if seat == 0 else (opponent_seed, None)
-    record = EpisodeRecord(env_seed, names, seeds, actions=[])
-    handler = InputHandler(seat)
-    get_events = get_events or pygame.event.get
     try:
-        opponent.reset(opponent_seed)
-        observations, _ = env.reset(seed=env_seed)
-        while env.agents and (max_steps is None or record.steps < max_steps):
-            for event in get_events():
-                handler.handle(event)
-            if handler.quit:
-                break
-            mine = int(handler.action())
-            theirs = int(opponent.act(observations[agents[1 - seat]]))
-            actions = (mine, theirs) if seat == 0 else (theirs, mine)
-            observations, _, _, _, infos = env.step(dict(zip(agents, actions, strict=True)))
-            record.add_step(actions, infos)
-        record.close(env)
-        if end_pause > 0 and not handler.quit:
-            time.sleep(end_pause)
-    finally:
-        env.close()
-    return record, env.config
+        pygame.display.init()
+    except pygame.error as error:
+        return NO_DISPLAY.format(why=f"SDL: {error}")
+    driver = pygame.display.get_driver()
+    if driver in HEADLESS_DRIVERS and not os.environ.get("SDL_VIDEODRIVER"):
+        pygame.display.quit()
+        why = "DISPLAY and WAYLAND_DISPLAY are not set" if _no_display_vars() else "SDL found none"
+        return NO_DISPLAY.format(why=f"{why}; SDL fell back to its {driver!r} driver")
+    return None
+
+
+class ReplaySaver:
+    """Saves each round the game reports as a replay in `folder`; prints and keeps the paths."""
+
+    def __init__(self, folder: str | Path, opponent: str, config: FightConfig) -> None:
+        self.folder = Path(folder)
+        self.stem = f"{time.strftime('%Y%m%d-%H%M%S')}-{re.sub(r'[^A-Za-z0-9_.-]+', '_', opponent)}"
+        self.config = config
+        self.saved: list[Path] = []
+
+    def __call__(self, record: EpisodeRecord, game: Game) -> Path:
+        name = f"{self.stem}-m{game.match.number}-r{len(game.match.rounds) + (not record.finished)}"
+        path = self.folder / f"{name}.json"
+        copy = 1
+        while path.exists():  # two sessions started in the same second
+            copy += 1
+            path = self.folder / f"{name}-{copy}.json"
+        Replay.from_episode(record, self.config).save(path)
+        print(f"replay: {path}   (python -m agents.match --replay {path} --render)", flush=True)
+        self.saved.append(path)
+        return path
 
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="vooga-play",
-        description="Fight a policy with the keyboard.",
-        epilog=__doc__.split("\n\n", 2)[2],
+        description="Fight a policy with the keyboard, in a window.",
+        epilog=__doc__.split("\n\n", 1)[1] + HELP_TEXT,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     parser.add_argument("opponent", help="a scripted name or a saved model path (.zip)")
@@ -152,33 +110,128 @@ def build_parser() -> argparse.ArgumentParser:
         help="0: you are fighter_0 (red, left); 1: fighter_1 (blue, right)",
     )
     common.add_fight_options(parser)
-    parser.add_argument("--save-replay", metavar="FILE", help="save the game as a replay")
+    parser.add_argument(
+        "--stocks",
+        type=common._positive,
+        default=PLAY_STOCKS,
+        help=f"stocks (lives) each per round (default {PLAY_STOCKS})",
+    )
+    parser.add_argument(
+        "--rounds", type=common._positive, default=1, help="a match is best of N rounds (default 1)"
+    )
+    low, high = SPEED_RANGE
+    parser.add_argument(
+        "--speed",
+        type=_speed,
+        default=1.0,
+        help=f"game speed, {low}..{high} times the env's render_fps (default 1)",
+    )
+    replays = parser.add_mutually_exclusive_group()
+    replays.add_argument(
+        "--replay-dir",
+        type=Path,
+        default=DEFAULT_REPLAY_DIR,
+        metavar="DIR",
+        help=f"save every round's replay here (default {DEFAULT_REPLAY_DIR}/)",
+    )
+    replays.add_argument("--no-replay", action="store_true", help="save no replays")
     return parser
 
 
-def main(argv: Sequence[str] | None = None) -> int:
+def main(
+    argv: Sequence[str] | None = None,
+    events: Callable[[], Iterable[Any]] | None = None,
+    clock: Clock | None = None,
+) -> int:
+    """The command; `events` and `clock` replace the window's (tests drive it with scripts)."""
     parser = build_parser()
     args = parser.parse_args(argv)
-    config = common.fight_config(parser, args)
+    config = play_config(parser, args)
+    os.environ.setdefault("SDL_AUDIODRIVER", "dummy")  # no sound: no audio device needed
+    problem = display_problem()
+    if problem is not None:
+        print(f"{parser.prog}: {problem}", file=sys.stderr)
+        return 2
     opponent = common.policy(parser, args.opponent)
-    print(__doc__.split("\n\n", 2)[2].rstrip())
-    record, config = run_play(opponent, args.seat, config, args.seed, end_pause=1.5)
-    if record.winner is None:
-        print(f"stopped after {record.steps} steps")
-    else:
-        you = f"fighter_{args.seat}"
-        verdict = (
-            "draw"
-            if record.winner == "draw"
-            else ("you win" if record.winner == you else f"{opponent.name} wins")
-        )
-        print(
-            f"{verdict} after {record.steps} steps (health {record.health}, stocks {record.stocks})"
-        )
-    if args.save_replay:
-        Replay.from_episode(record, config).save(args.save_replay)
-        print(f"replay: {args.save_replay} (python -m agents.match --replay {args.save_replay})")
+    label = opponent.name if args.opponent in SCRIPTED else Path(args.opponent).name
+    import vooga_env
+
+    env = vooga_env.parallel_env(config=config, backend="engine")
+    saver = None if args.no_replay else ReplaySaver(args.replay_dir, label, env.config)
+    settings = PlaySettings(args.seat, args.rounds, args.speed, args.seed)
+    game = Game(env, opponent, settings, on_round_end=saver, opponent_name=label)
+    print(HELP_TEXT, flush=True)
+    try:
+        run(game, _window(game), events, clock)
+    except KeyboardInterrupt:  # Ctrl-C in the terminal: stop as Esc does, keeping the round
+        game.quit()
+    finally:
+        env.close()
+        _close_window()
+    _summary(game, saver)
     return 0
+
+
+def play_config(parser: argparse.ArgumentParser, args: argparse.Namespace) -> FightConfig:
+    """The stage with --stocks stocks; its clock keeps the config's time per stock (900 steps a
+    stock on `default`) unless --max-cycles sets it. A bad name or value is a usage error."""
+    try:
+        base = load_config(args.config)
+        max_cycles = args.max_cycles
+        if max_cycles is None:
+            max_cycles = math.ceil(base.max_cycles * args.stocks / base.stocks)
+        return load_config(base, stocks=args.stocks, max_cycles=max_cycles)
+    except ConfigError as error:
+        parser.error(str(error))
+
+
+def _summary(game: Game, saver: ReplaySaver | None) -> None:
+    for match in game.matches:
+        if not match.rounds:
+            continue  # quit before its first round ended
+        wins, losses = match.count("win"), match.count("loss")
+        verdict = {"win": "you won", "loss": f"{game.opponent_name} won", "draw": "drawn"}
+        rounds = ", ".join(f"{r.outcome} ({r.how})" for r in match.rounds)
+        print(f"match {match.number}: {verdict[match.outcome]} {wins}-{losses}; rounds: {rounds}")
+    if saver is not None and saver.saved:
+        print(f"{len(saver.saved)} replay(s) in {saver.folder}/")
+
+
+def _window(game: Game) -> Callable[[], None]:
+    """Open the game's window (the stage's size); returns what draws a frame in it."""
+    import pygame
+
+    arena = game.env.config.arena
+    window = pygame.display.set_mode((int(arena.width), int(arena.height)))
+    pygame.display.set_caption(f"vooga_env: you vs {game.opponent_name}")
+    screens = Screens(game, window)
+
+    def draw() -> None:
+        screens.draw()
+        pygame.display.flip()
+
+    return draw
+
+
+def _close_window() -> None:
+    import pygame
+
+    pygame.display.quit()
+
+
+def _speed(text: str) -> float:
+    try:
+        value: Any = float(text)
+    except ValueError:
+        value = text
+    try:
+        return check_speed(value)
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+
+
+def _no_display_vars() -> bool:
+    return not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
 
 
 if __name__ == "__main__":

@@ -8,12 +8,16 @@ from __future__ import annotations
 
 import os
 import warnings
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from vooga_env.config import FightConfig
 from vooga_env.fight import Fight
 from vooga_env.hits import Fighter
+
+if TYPE_CHECKING:
+    import pygame
 
 SKY = (24, 28, 44)
 BLAST = (120, 40, 50)
@@ -46,7 +50,9 @@ def warn_if_headless(driver: str) -> None:
 class Viewer:
     """Draws a Fight to an off-screen surface, and to a window in `human` mode."""
 
-    def __init__(self, fight: Fight, mode: str, fps: int) -> None:
+    def __init__(
+        self, fight: Fight, mode: str, fps: float, names: tuple[str, str] | None = None
+    ) -> None:
         if mode == "rgb_array" and "DISPLAY" not in os.environ:
             os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
         try:
@@ -57,6 +63,8 @@ class Viewer:
         self.fight = fight
         self.mode = mode
         self.fps = fps
+        self.names = names or tuple(fighter.name for fighter in fight.fighters)
+        """The HUD's label of each fighter (default `fighter_0`, `fighter_1`)."""
         arena = fight.config.arena
         self.size = (int(arena.width), int(arena.height))
         pygame.init()
@@ -72,6 +80,17 @@ class Viewer:
 
     def draw(self) -> np.ndarray | None:
         """Draw the current frame; an HxWx3 uint8 array in rgb_array mode, None in human mode."""
+        pygame, surface = self.pygame, self.paint()
+        if self.window is not None:
+            pygame.event.pump()
+            self.window.blit(surface, (0, 0))
+            pygame.display.flip()
+            self.clock.tick(self.fps)
+            return None
+        return np.ascontiguousarray(pygame.surfarray.pixels3d(surface).transpose(1, 0, 2))
+
+    def paint(self) -> pygame.Surface:
+        """Draw the current frame on the off-screen surface and return it (a caller's window)."""
         pygame, surface, fight = self.pygame, self.surface, self.fight
         surface.fill(SKY)
         width, height = self.size
@@ -85,13 +104,7 @@ class Viewer:
         for fighter in fight.fighters:
             self._fighter(fighter)
         self._hud()
-        if self.window is not None:
-            pygame.event.pump()
-            self.window.blit(surface, (0, 0))
-            pygame.display.flip()
-            self.clock.tick(self.fps)
-            return None
-        return np.ascontiguousarray(pygame.surfarray.pixels3d(surface).transpose(1, 0, 2))
+        return surface
 
     def _fighter(self, fighter: Fighter) -> None:
         pygame, surface = self.pygame, self.surface
@@ -129,9 +142,8 @@ class Viewer:
             pygame.draw.rect(
                 surface, FIGHTER_COLOURS[fighter.index], (left, 16, round(200 * share), 14)
             )
-            text = self.font.render(
-                f"{fighter.name}  {fighter.health:.0f} hp  stocks {fighter.stocks}", True, TEXT
-            )
+            label = f"{self.names[fighter.index]}  {fighter.health:.0f} hp  stocks {fighter.stocks}"
+            text = self.font.render(label, True, TEXT)
             place = (
                 {"topleft": (left, 34)} if fighter.index == 0 else {"topright": (width - 20, 34)}
             )

@@ -105,7 +105,7 @@ def side_by_side(
     fights_in_batch: int = 6,
     seed: int = 40,
     config: str = "default",
-    threads: int | None = None,
+    threads: int = 1,
     **overrides,
 ) -> dict:
     """N single envs and one batch of N, the same seeds and actions; compared at every step."""
