@@ -50,3 +50,33 @@ def action_index(who: str, action: Any) -> int:
     if not 0 <= value < len(Action):
         raise ValueError(f"{who} must be in 0..{len(Action) - 1}, got {action!r}")
     return int(value)
+
+
+def batch_actions(who: str, actions: Any, size: int) -> np.ndarray:
+    """`actions` as an int64 array of `size` actions in 0..9, or an error naming `who`.
+
+    Integral floats (1.0) pass as the ints they hold; 1.5 is refused rather than truncated.
+    """
+    array = np.asarray(actions)
+    if array.shape != (size,):
+        raise ValueError(f"{who} must have shape ({size},), got {array.shape}")
+    integral = np.issubdtype(array.dtype, np.integer) or (
+        np.issubdtype(array.dtype, np.floating) and bool(np.all(array == np.round(array)))
+    )
+    if not integral:
+        raise TypeError(f"{who} must be ints in 0..{len(Action) - 1}, got {array!r}")
+    bad = np.flatnonzero((array < 0) | (array >= len(Action)))
+    if bad.size:
+        raise ValueError(
+            f"{who}[{bad[0]}] = {array[bad[0]].item()!r}: actions must be in 0..{len(Action) - 1}"
+        )
+    return array.astype(np.int64)
+
+
+def check_seat(seat: Any) -> int:
+    """A learner's seat, 0 or 1 (a numpy integer too), as a plain int."""
+    if isinstance(seat, (bool, np.bool_)) or not isinstance(seat, (int, np.integer)):
+        raise TypeError(f"seat must be 0 or 1, got {seat!r}")
+    if seat not in (0, 1):
+        raise ValueError(f"seat must be 0 or 1, got {seat!r}")
+    return int(seat)

@@ -141,6 +141,17 @@ def vec_env(actions, **kwargs):
     return call
 
 
+def gym_vector(actions, **kwargs):
+    def call():
+        from vooga_env.gym_vector import FightVectorEnv
+
+        env = FightVectorEnv(2, **{"opponent": "rush", **kwargs})
+        env.reset(seed=0)
+        env.step(actions)
+
+    return call
+
+
 class Predicts:
     """A model-like object whose `predict` gives `action`."""
 
@@ -386,7 +397,10 @@ CASES = [
     ("vecenv-too-few-actions", vec_env([0, 0, 0]), V, "actions.*4.*(3,)"),
     ("vecenv-too-many-actions", vec_env([0, 0, 0, 0, 0]), V, "actions.*4.*(5,)"),
     ("vecenv-vs-too-many", vec_env([0, 0, 0], opponent="rush"), V, "actions.*2.*(3,)"),
-    ("vecenv-action-10", vec_env([0, 10], opponent="rush"), V, "actions[1, 0] = 10"),
+    ("vecenv-action-10", vec_env([0, 10], opponent="rush"), V, "actions[1] = 10"),
+    ("vecenv-action-float", vec_env([0, 1.5], opponent="rush"), T, "actions.*1.5"),
+    ("vecenv-self-play-action-10", vec_env([0, 0, 10, 0]), V, "actions[1, 0] = 10"),
+    ("vecenv-seat-bool", vec_env([0, 0], opponent="rush", seat=True), T, "seat.*True"),
     (
         "vecenv-opponent-shape",
         vec_env([0, 0], opponent=BatchOpponent([1])),
@@ -402,8 +416,8 @@ CASES = [
     (
         "vecenv-opponent-floats",
         vec_env([0, 0], opponent=BatchOpponent([0.5, 1.0])),
-        V,
-        "opponent BatchOpponent().*float64",
+        T,
+        "opponent BatchOpponent().*0.5",
     ),  # fmt: skip
     (
         "vecenv-opponent-none",
@@ -411,6 +425,27 @@ CASES = [
         V,
         "opponent BatchOpponent()",
     ),  # fmt: skip
+    # --- FightVectorEnv (Gymnasium's vector API)
+    ("gymvec-action-10", gym_vector([0, 10]), V, "actions[1] = 10"),
+    ("gymvec-action-float", gym_vector([0.5, 1]), T, "actions.*0.5"),
+    ("gymvec-action-count", gym_vector([0, 1, 2]), V, "actions.*(2,).*(3,)"),
+    (
+        "gymvec-opponent-shape",
+        gym_vector([0, 0], opponent=BatchOpponent([1, 2, 3])),
+        V,
+        "opponent BatchOpponent().*(2,).*(3,)",
+    ),  # fmt: skip
+    (
+        "gymvec-opponent-range",
+        gym_vector([0, 0], opponent=BatchOpponent([-1, 0])),
+        V,
+        "opponent BatchOpponent().*[0] = -1",
+    ),  # fmt: skip
+    ("gymvec-opponent-int", gym_vector([0, 0], opponent=5), T, "opponent.*5"),
+    ("gymvec-seat-bool", gym_vector([0, 0], seat=False), T, "seat.*False"),
+    ("gymvec-seat-3", gym_vector([0, 0], seat=3), V, "seat.*3"),
+    ("gymvec-render-mode", gym_vector([0, 0], render_mode="human"), V, "render_mode.*'human'"),
+    ("gymvec-config", gym_vector([0, 0], frame_skip=0), C, "frame_skip = 0"),
     # --- policies
     ("policy-name", lambda: make_policy("ninja"), V, "'ninja'.*rush"),
     ("policy-int", lambda: make_policy(42), T, "policy.*42"),

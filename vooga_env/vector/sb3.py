@@ -34,7 +34,7 @@ import numpy as np
 from gymnasium import spaces
 from stable_baselines3.common.vec_env import VecEnv
 
-from vooga_env.actions import Action
+from vooga_env.actions import Action, batch_actions, check_seat
 from vooga_env.config import FightConfig
 from vooga_env.observations import HIGH, LOW, OBSERVATION_SIZE
 from vooga_env.spectator import Spectator
@@ -42,22 +42,6 @@ from vooga_env.vector.engine import VectorFight
 from vooga_env.vector.opponents import batch_opponent
 
 _EVENTS = ("damage_dealt", "damage_taken", "hits_landed", "hits_blocked", "rung_out", "knocked_out")
-
-
-def _opponent_actions(opponent: Any, observations: np.ndarray) -> np.ndarray:
-    """The opponent's actions for the batch, or an error that blames the opponent."""
-    actions = np.asarray(opponent.act(observations))
-    size = len(observations)
-    if actions.shape != (size,) or not np.issubdtype(actions.dtype, np.integer):
-        raise ValueError(
-            f"opponent {opponent!r}: act(observations) must return {size} int actions "
-            f"(shape ({size},)), got {actions.dtype} of shape {actions.shape}"
-        )
-    if size and (actions.min() < 0 or actions.max() >= len(Action)):
-        raise ValueError(
-            f"opponent {opponent!r}: actions must be in 0..{len(Action) - 1}, got {actions!r}"
-        )
-    return actions
 
 
 class FightVecEnv(VecEnv):
@@ -76,8 +60,7 @@ class FightVecEnv(VecEnv):
         threads: int = 1,
         **overrides: Any,
     ) -> None:
-        if seat not in (0, 1):
-            raise ValueError(f"seat must be 0 or 1, got {seat!r}")
+        seat = check_seat(seat)
         if render_mode not in (None, "rgb_array"):
             raise ValueError(f"render_mode must be None or 'rgb_array', got {render_mode!r}")
         self.fights = VectorFight(num_fights, config, backend=backend, threads=threads, **overrides)
@@ -152,9 +135,13 @@ class FightVecEnv(VecEnv):
             pairs = actions.reshape(-1, 2)
         else:
             pairs = np.empty((self.fights.num_fights, 2), dtype=np.int64)
-            pairs[:, self.seat] = actions
+            pairs[:, self.seat] = batch_actions("actions", actions, self.num_envs)
             opponent_obs = self._observations[:, 1 - self.seat]
-            pairs[:, 1 - self.seat] = _opponent_actions(self.opponent, opponent_obs)
+            pairs[:, 1 - self.seat] = batch_actions(
+                f"opponent {self.opponent!r}: act(observations)",
+                self.opponent.act(opponent_obs),
+                self.num_envs,
+            )
         observations, rewards, terminated, truncated, info = self.fights.step(pairs)
         if self._spectator is not None:
             self._spectator.step(int(pairs[0, 0]), int(pairs[0, 1]))
