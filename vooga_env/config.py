@@ -1,8 +1,11 @@
 """Fight configuration: frozen dataclasses loaded from TOML files in `configs/`, validated on load.
 
 `load_config("water", max_cycles=500)` takes a name from `configs/` (or a path to a .toml file)
-plus keyword overrides (nested tables as dicts: `physics={"gravity": 0.003}`). An unknown key, a
-wrong type or an impossible arena raises `ConfigError` naming the source and the key.
+plus keyword overrides (nested tables as dicts: `physics={"gravity": 0.003}`). An unknown or
+missing key, a wrong type, a number out of range (|float| <= FLOAT_MAX, |int| <= INT_MAX, and each
+field's own range) or an impossible arena raises `ConfigError` naming the source, the key and the
+value; numpy scalars stand for the plain numbers they hold. A config that loads runs on every
+backend for any seed (`tests/env/test_random_configs.py` checks it).
 """
 
 from __future__ import annotations
@@ -59,7 +62,7 @@ class ArenaConfig:
 
     `spawns` holds each fighter's spawn x (the left edge, px); fighters spawn standing on the
     highest block under them, so never inside one. `spawn_jitter` (px) moves each spawn by a
-    seeded random amount.
+    seeded random amount, so every x within `spawn_jitter` of a spawn must have a block under it.
     """
 
     width: float = 800.0
@@ -71,7 +74,10 @@ class ArenaConfig:
 
 @dataclass(frozen=True)
 class PhysicsConfig:
-    """The engine's factors (see FightPhysicsEngine) and the physics frame's length."""
+    """The engine's factors (see FightPhysicsEngine) and the physics frame's length.
+
+    `gravity` (px/ms^2) must be > 0: without it a jump never comes down.
+    """
 
     gravity: float = 0.002
     background_factor: float = 1.0
