@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import math
 import re
+import subprocess
+import sys
 
 import gymnasium
 import numpy as np
@@ -608,3 +610,26 @@ def test_a_numpy_max_cycles_plays_the_same_game_as_a_plain_one():
         env.reset(seed=1)
         games.append([env.step({"fighter_0": 2, "fighter_1": 8})[0] for _ in range(60)])
     assert all(a[k].tobytes() == b[k].tobytes() for a, b in zip(*games) for k in a)
+
+
+def test_the_checks_survive_python_dash_o():
+    """No check is an `assert`: under `python -O` the same inputs get the same errors."""
+    code = """
+import vooga_env
+from vooga_env.config import ConfigError
+aec = vooga_env.env(backend="engine")  # numba takes seconds to load
+for call, error in [
+    (lambda: aec.step(0), RuntimeError),
+    (lambda: (aec.reset(seed=0), aec.step(10)), ValueError),
+    (lambda: aec.step("kick"), TypeError),
+    (lambda: vooga_env.parallel_env(physics={"gravity": -1.0}), ConfigError),
+    (lambda: vooga_env.parallel_env(arena={"spawns": [81, 520], "spawn_jitter": 30}), ConfigError),
+]:
+    try:
+        call()
+    except error:
+        pass
+    else:
+        raise SystemExit(f"no {error.__name__} under -O")
+"""
+    subprocess.run([sys.executable, "-O", "-c", code], check=True, timeout=120)
