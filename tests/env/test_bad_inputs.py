@@ -20,6 +20,7 @@ import pytest
 
 import vooga_env
 from vooga_env.config import ConfigError, load_config
+from vooga_env.elo import EloTable, round_robin
 from vooga_env.gym_env import FightEnv
 from vooga_env.match import run_match
 from vooga_env.physics import (
@@ -486,6 +487,17 @@ CASES = [
     ("match-step-hook", lambda: run_match("rush", "idle", step_hook="log"), T, "step_hook.*'log'"),
     ("match-policy", lambda: run_match("rush", 7), T, "policy.*7"),
     ("match-config", lambda: run_match("rush", "idle", episodes=1, stocks=0), C, "stocks = 0"),
+    # --- Elo tables and tournaments
+    ("elo-k-zero", lambda: EloTable(["a", "b"], k=0), V, "k.*0"),
+    ("elo-k-nan", lambda: EloTable(["a", "b"], k=NAN), V, "k.*nan"),
+    ("elo-start-string", lambda: EloTable(["a"], start="1000"), T, "start.*'1000'"),
+    ("elo-unknown-name", lambda: EloTable(["a", "b"]).record("a", "c", 1.0), K, "'c'.*a, b"),
+    ("elo-score", lambda: EloTable(["a", "b"]).record("a", "b", 2.0), V, "score.*2.0"),
+    ("elo-score-nan", lambda: EloTable(["a", "b"]).record("a", "b", NAN), V, "score.*nan"),
+    ("tournament-seed", lambda: round_robin(["rush", "idle"], seed=-1), V, "seed.*-1"),
+    ("tournament-episodes", lambda: round_robin(["rush", "idle"], episodes=0), V, "episodes.*0"),
+    ("tournament-one", lambda: round_robin(["rush"]), V, "two entrants.*rush"),
+    ("tournament-entrant", lambda: round_robin(["rush", 3.5]), T, "policy.*3.5"),
     # --- physics sprites and world
     ("sprite-x-nan", assign("x", NAN), V, "x.*nan"),
     ("sprite-y-inf", assign("y", INF), V, "y.*inf"),
