@@ -84,6 +84,8 @@ class Fight:
     """The game: stage, fighters, attacks, stocks; stepped by actions, reset by a seeded RNG."""
 
     def __init__(self, config: FightConfig) -> None:
+        if not isinstance(config, FightConfig):
+            raise TypeError(f"config must be a FightConfig (see load_config), got {config!r}")
         self.config = config
         arena, physics = config.arena, config.physics
         self.engine = FightPhysicsEngine(
@@ -129,6 +131,8 @@ class Fight:
 
     def reset(self, rng: np.random.Generator) -> None:
         """Start a new fight: full stocks and health, spawns jittered by `rng`."""
+        if not isinstance(rng, np.random.Generator):
+            raise TypeError(f"rng must be a numpy Generator (np.random.default_rng), got {rng!r}")
         jitter = self.config.arena.spawn_jitter
         self.spawns = [
             x + (float(rng.uniform(-jitter, jitter)) if jitter > 0 else 0.0)

@@ -21,6 +21,7 @@ import pytest
 import vooga_env
 from vooga_env.config import ConfigError, load_config
 from vooga_env.elo import EloTable, round_robin
+from vooga_env.fight import Fight
 from vooga_env.gym_env import FightEnv
 from vooga_env.match import run_match
 from vooga_env.physics import (
@@ -299,6 +300,11 @@ CASES = [
     ("config-int", lambda: load_config(3), C, "config.*3"),
     ("config-unknown-name", lambda: load_config("nope"), C, "'nope'"),
     ("replace-bad", lambda: load_config("default").replace(max_cycles=0), C, "max_cycles = 0"),
+    # --- the game itself
+    ("fight-config-name", lambda: Fight("default"), T, "config.*'default'"),
+    ("fight-reset-seed", lambda: Fight(load_config()).reset(7), T, "rng.*7"),
+    ("fight-step-action", lambda: _fight().step((0, 12)), V, "actions[1] = 12"),
+    ("fight-step-string", lambda: _fight().step(("jump", 0)), V, "actions[0] = 'jump'"),
     # --- the parallel env
     ("render-mode", lambda: vooga_env.parallel_env(render_mode="ansi"), V, "render_mode.*'ansi'"),
     ("backend", lambda: vooga_env.parallel_env(backend="gpu"), V, "backend = 'gpu'"),
@@ -529,6 +535,12 @@ CASES = [
     ),  # fmt: skip
     ("motion-vector-nan", lambda: MotionAction(sprite(), NAN, 0.0), V, "vector_x.*nan"),
 ]
+
+
+def _fight():
+    fight = Fight(load_config())
+    fight.reset(np.random.default_rng(0))
+    return fight
 
 
 def _aec():
