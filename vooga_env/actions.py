@@ -73,10 +73,10 @@ def batch_actions(who: str, actions: Any, size: int) -> np.ndarray:
     return array.astype(np.int64)
 
 
-def check_seat(seat: Any) -> int:
-    """A learner's seat, 0 or 1 (a numpy integer too), as a plain int."""
+def check_seat(seat: Any, allowed: str = "0 or 1") -> int:
+    """A learner's seat, 0 or 1 (a numpy integer too), as a plain int; `allowed` for the message."""
     if isinstance(seat, (bool, np.bool_)) or not isinstance(seat, (int, np.integer)):
-        raise TypeError(f"seat must be 0 or 1, got {seat!r}")
+        raise TypeError(f"seat must be {allowed}, got {seat!r}")
     if seat not in (0, 1):
-        raise ValueError(f"seat must be 0 or 1, got {seat!r}")
+        raise ValueError(f"seat must be {allowed}, got {seat!r}")
     return int(seat)

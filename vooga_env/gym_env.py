@@ -8,7 +8,7 @@ from typing import Any
 import gymnasium
 import numpy as np
 
-from vooga_env.actions import action_index
+from vooga_env.actions import action_index, check_seat
 from vooga_env.config import FightConfig
 from vooga_env.parallel import AGENTS, FightParallelEnv
 from vooga_env.policies import Policy, make_policy
@@ -39,11 +39,7 @@ class FightEnv(gymnasium.Env):
         **kwargs: Any,
     ) -> None:
         if seat != "random":
-            if isinstance(seat, (bool, np.bool_)) or not isinstance(seat, (int, np.integer)):
-                raise TypeError(f"seat must be 0, 1 or 'random', got {seat!r}")
-            if seat not in (0, 1):
-                raise ValueError(f"seat must be 0, 1 or 'random', got {seat!r}")
-            seat = int(seat)
+            seat = check_seat(seat, "0, 1 or 'random'")
         self.fight_env = FightParallelEnv(config, render_mode=render_mode, **kwargs)
         self.metadata = self.fight_env.metadata
         self.render_mode = render_mode
