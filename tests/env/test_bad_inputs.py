@@ -533,6 +533,18 @@ CASES = [
         V,
         "motion action.*not in this world",
     ),  # fmt: skip
+    (
+        "increment-nan",
+        lambda: FightPhysicsEngine(80, 60).set_next_location_increment(sprite(), NAN, 0.0),
+        V,
+        "dx.*nan",
+    ),  # fmt: skip
+    (
+        "increment-string",
+        lambda: FightPhysicsEngine(80, 60).set_next_location_increment(sprite(), 0.0, "up"),
+        T,
+        "dy.*'up'",
+    ),  # fmt: skip
     ("motion-vector-nan", lambda: MotionAction(sprite(), NAN, 0.0), V, "vector_x.*nan"),
 ]
 
