@@ -189,7 +189,8 @@ class FightConfig:
 def load_config(config: str | Path | FightConfig = "default", **overrides: Any) -> FightConfig:
     """A FightConfig from a name in configs/, a .toml path or a FightConfig, plus overrides."""
     if isinstance(config, FightConfig):
-        return config.replace(**overrides) if overrides else config
+        checked = config.replace(**overrides)  # one built by hand is checked here, as a file is
+        return checked if overrides else config
     data, path = read_toml(config, CONFIG_DIR, "config")
     source = f"{path} with overrides {overrides}" if overrides else str(path)
     return build_config(FightConfig, _merge(data, overrides), source)

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 import vooga_env
-from vooga_env.config import ConfigError, load_config
+from vooga_env.config import ArenaConfig, ConfigError, FightConfig, PhysicsConfig, load_config
 from vooga_env.elo import EloTable, round_robin
 from vooga_env.fight import Fight
 from vooga_env.gym_env import FightEnv
@@ -299,6 +299,26 @@ CASES = [
     ("name-int", config(name=3), C, "name.*3"),
     ("config-int", lambda: load_config(3), C, "config.*3"),
     ("config-unknown-name", lambda: load_config("nope"), C, "'nope'"),
+    (
+        "hand-built-config",
+        lambda: vooga_env.parallel_env(
+            config=FightConfig(arena=ArenaConfig(spawns=(81.0, 520.0), spawn_jitter=30.0))
+        ),
+        C,
+        "arena.spawns[0]",
+    ),
+    (
+        "hand-built-gravity",
+        lambda: VectorFight(2, FightConfig(physics=PhysicsConfig(gravity=-1.0))),
+        C,
+        "physics.gravity = -1.0",
+    ),  # fmt: skip
+    (
+        "hand-built-string-number",
+        lambda: load_config(FightConfig(max_cycles="9")),
+        C,
+        "max_cycles.*'9'",
+    ),  # fmt: skip
     ("replace-bad", lambda: load_config("default").replace(max_cycles=0), C, "max_cycles = 0"),
     # --- the game itself
     ("fight-config-name", lambda: Fight("default"), T, "config.*'default'"),
