@@ -10,7 +10,7 @@ ARGS ?=
 $(STAMP): pyproject.toml constraints.txt
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -c constraints.txt -e '.[dev,render,train,fast]'
+	$(BIN)/python -m pip install --quiet -c constraints.txt -e '.[dev,render,train,fast,rllib]'
 	$(BIN)/python -m vooga_env.vector.cache
 	touch $(STAMP)
 

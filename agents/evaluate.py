@@ -3,9 +3,10 @@
     python -m agents.evaluate runs/ppo.zip --episodes 200
     python -m agents.evaluate rush --episodes 50 --json
 
-MODEL is a saved model (.zip) or any scripted name. It plays `--episodes` games against every
-opponent, seats swapped each game; for the Elo the opponents also play each other (a round-robin,
-`vooga_env.elo`: K=16, start 1200, a draw scores 0.5). Draws count as non-wins in the win rate.
+MODEL is a saved model (.zip), an exported fighter (.npz) or any scripted name. It plays
+`--episodes` games against every opponent, seats swapped each game; for the Elo the opponents also
+play each other (a round-robin, `vooga_env.elo`: K=16, start 1200, a draw scores 0.5). Draws count
+as non-wins in the win rate.
 """
 
 from __future__ import annotations
@@ -29,7 +30,11 @@ def build_parser() -> argparse.ArgumentParser:
         description="Win rates (95% Wilson interval) of MODEL against the scripted fighters, "
         "and its Elo among them.",
     )
-    parser.add_argument("model", metavar="MODEL", help="a saved model (.zip) or a scripted name")
+    parser.add_argument(
+        "model",
+        metavar="MODEL",
+        help="a saved model (.zip), an exported fighter (.npz) or a scripted name",
+    )
     parser.add_argument(
         "--opponents",
         nargs="*",

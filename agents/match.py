@@ -5,8 +5,9 @@
     python -m agents.match --replay first.json --render
 
 Each side is a scripted fighter (idle, random, rush, turtle, zoner, edge_guard) or a saved model
-(.zip). Seats are swapped every game and both games of a pair share their seeds, so neither side
-is favoured. `--record` (.gif or .mp4) and `--save-replay` keep the first game.
+(.zip, or an exported fighter .npz). Seats are swapped every game and both games of a pair share
+their seeds, so neither side is favoured. `--record` (.gif or .mp4) and `--save-replay` keep the
+first game.
 """
 
 from __future__ import annotations

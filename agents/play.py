@@ -101,7 +101,9 @@ def build_parser() -> argparse.ArgumentParser:
         epilog=__doc__.split("\n\n", 1)[1] + HELP_TEXT,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    parser.add_argument("opponent", help="a scripted name or a saved model path (.zip)")
+    parser.add_argument(
+        "opponent", help="a scripted name, a saved model (.zip) or an exported fighter (.npz)"
+    )
     parser.add_argument(
         "--seat",
         type=int,

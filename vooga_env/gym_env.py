@@ -19,10 +19,11 @@ class FightEnv(gymnasium.Env):
 
     ## Arguments
     `opponent`: a scripted fighter's name (`idle`, `random`, `rush`, `turtle`, `zoner`,
-    `edge_guard`), a saved model path (.zip), any callable `obs -> action`, or an object with SB3's
-    `predict`. `seat`: 0 or 1 for the learner's side, or "random" to draw it each episode (the
-    observations and actions are mirrored, so a policy plays either side). Everything else goes to
-    `FightParallelEnv`: `config`, `render_mode`, `reward_fn`, `backend`, and config overrides.
+    `edge_guard`), a saved model path (.zip), an exported fighter (.npz), any callable
+    `obs -> action`, or an object with SB3's `predict`. `seat`: 0 or 1 for the learner's side, or
+    "random" to draw it each episode (the observations and actions are mirrored, so a policy plays
+    either side). Everything else goes to `FightParallelEnv`: `config`, `render_mode`, `reward_fn`,
+    `backend`, and config overrides.
 
     Observations, actions, rewards and infos are the learner's, as in the parallel env;
     `info["seat"]`, `info["opponent"]` (its name) and `info["opponent_action"]` are added.

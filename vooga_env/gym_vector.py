@@ -58,6 +58,7 @@ class FightVectorEnv(gymnasium.vector.VectorEnv):
         threads: int = 1,
         **overrides: Any,
     ) -> None:
+        self._spectator: Spectator | None = None  # first: gymnasium's __del__ closes it
         seat = check_seat(seat)
         if render_mode not in (None, "rgb_array"):
             raise ValueError(f"render_mode must be None or 'rgb_array', got {render_mode!r}")

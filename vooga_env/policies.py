@@ -234,7 +234,8 @@ class PredictPolicy(Policy):
 
 
 def make_policy(spec: str | Path | Policy | Callable | Any, seed: int | None = None) -> Policy:
-    """A Policy from a scripted name, a saved model (.zip), a Policy, a predict-er or a callable.
+    """A Policy from a scripted name, a saved model (.zip), an exported MLP fighter (.npz), a
+    Policy, a predict-er or a callable.
 
     A Policy given with a seed comes back as a copy reseeded with it (the original may be shared,
     say by several envs, and each must draw its own numbers to be repeatable).
@@ -253,13 +254,17 @@ def make_policy(spec: str | Path | Policy | Callable | Any, seed: int | None = N
         if str(spec) in SCRIPTED:
             return SCRIPTED[str(spec)](seed)
         path = Path(spec)
+        if path.suffix == ".npz":
+            from vooga_env.models import load_mlp
+
+            return load_mlp(path)
         if path.suffix == ".zip" or path.with_suffix(".zip").is_file():
             from vooga_env.models import FrozenPolicy, load_model
 
             return FrozenPolicy(load_model(path), name=path.stem)
         raise ValueError(
-            f"unknown policy {str(spec)!r}: use one of {', '.join(SCRIPTED)} "
-            "or a saved model (.zip)"
+            f"unknown policy {str(spec)!r}: use one of {', '.join(SCRIPTED)}, "
+            "a saved model (.zip) or an exported fighter (.npz)"
         )
     if hasattr(spec, "predict"):
         if not callable(spec.predict):

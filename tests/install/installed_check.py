@@ -28,7 +28,8 @@ train_names = sorted(p.name[:-5] for p in configs.joinpath("train").iterdir())
 for name in names:
     load_config(name)
 for name in train_names:
-    load_train_config(name)
+    if not name.startswith("rllib_"):  # the rllib extra's, checked below when it is there
+        load_train_config(name)
 print("configs", " ".join(names), "| train", " ".join(train_names))
 
 start = time.perf_counter()
@@ -62,3 +63,17 @@ sb3 = FightVecEnv(4, opponent="rush")
 sb3.reset()
 sb3.step(np.zeros(4, dtype=np.int64))
 print("faces ok")
+
+if importlib.util.find_spec("ray") is not None:  # the rllib extra
+    from vooga_env.agents.rllib_config import load_rllib_config
+    from vooga_env.agents.rllib_env import FightMultiAgentEnv
+    from vooga_env.agents.train_rllib import main as train_rllib  # noqa: F401
+
+    for name in train_names:
+        if name.startswith("rllib_"):
+            load_rllib_config(name)
+    multi = FightMultiAgentEnv({"fight": "small", "max_cycles": 20})
+    multi.reset(seed=0)
+    _, _, _, truncated, _ = multi.step({"fighter_0": 1, "fighter_1": 2})
+    assert "__all__" in truncated
+    print("rllib ok")

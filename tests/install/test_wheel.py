@@ -3,6 +3,7 @@ fresh venv, and used from a folder outside the checkout, CLIs and README snippet
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import re
 import shutil
@@ -73,8 +74,9 @@ def test_the_wheel_holds_the_package_and_every_config_and_nothing_else(installed
     assert not any("__pycache__" in n or n.endswith((".nbi", ".nbc")) for n in names)
     entry_points = next(n for n in names if n.endswith("entry_points.txt"))
     commands = zipfile.ZipFile(wheel).read(entry_points).decode()
-    for command in ("match", "tournament", "train", "evaluate", "play"):
-        assert f"vooga-{command} = vooga_env.agents.{command}:main" in commands
+    for command in ("match", "tournament", "train", "evaluate", "play", "train_rllib"):
+        script = command.replace("_", "-")
+        assert f"vooga-{script} = vooga_env.agents.{command}:main" in commands
 
 
 def test_every_config_and_env_face_works_from_outside_the_checkout(installed):
@@ -82,6 +84,8 @@ def test_every_config_and_env_face_works_from_outside_the_checkout(installed):
     output = run(python, HERE / "installed_check.py", site, cwd=work, env=env, timeout=600)
     print(output)
     assert "faces ok" in output
+    if importlib.util.find_spec("ray") is not None:
+        assert "rllib ok" in output
     if "first compiled step" in output and "compiling the fight kernels" not in output:
         pytest.fail("a fresh install compiled without saying so:\n" + output)
 
