@@ -1,14 +1,17 @@
 """Fight configuration: frozen dataclasses loaded from TOML files in `configs/`, validated on load.
 
 `load_config("water", max_cycles=500)` takes a name from `configs/` (or a path to a .toml file)
-plus keyword overrides (nested tables as dicts: `physics={"gravity": 0.003}`). An unknown key, a
-wrong type or an impossible arena raises `ConfigError` naming the source and the key.
+plus keyword overrides (nested tables as dicts: `physics={"gravity": 0.003}`). An unknown or
+missing key, a wrong type, a number out of range (|float| <= FLOAT_MAX, |int| <= INT_MAX, and each
+field's own range) or an impossible arena raises `ConfigError` naming the source, the key and the
+value; numpy scalars stand for the plain numbers they hold. A config that loads runs on every
+backend for any seed (`tests/env/test_random_configs.py` checks it).
 """
 
 from __future__ import annotations
 
 import dataclasses
-import math
+import numbers
 import sys
 import typing
 from collections.abc import Mapping
@@ -29,6 +32,10 @@ CONFIG_DIR = next(
 )
 
 REACTIONS = ("push", "momentum", "stop", "punch", "rebound", "force", "none")
+# Bounds on every number: the batched engine keeps counts in int64 and sums frame counts, and a
+# float this large already makes no fight (positions and speeds stay far from overflow).
+INT_MAX = 2**31 - 1
+FLOAT_MAX = 1e9
 
 
 class ConfigError(ValueError):
@@ -44,6 +51,10 @@ class Block:
     width: float
     height: float
 
+    @property
+    def right(self) -> float:
+        return self.x + self.width
+
 
 @dataclass(frozen=True)
 class ArenaConfig:
@@ -51,7 +62,7 @@ class ArenaConfig:
 
     `spawns` holds each fighter's spawn x (the left edge, px); fighters spawn standing on the
     highest block under them, so never inside one. `spawn_jitter` (px) moves each spawn by a
-    seeded random amount.
+    seeded random amount, so every x within `spawn_jitter` of a spawn must have a block under it.
     """
 
     width: float = 800.0
@@ -63,7 +74,10 @@ class ArenaConfig:
 
 @dataclass(frozen=True)
 class PhysicsConfig:
-    """The engine's factors (see FightPhysicsEngine) and the physics frame's length."""
+    """The engine's factors (see FightPhysicsEngine) and the physics frame's length.
+
+    `gravity` (px/ms^2) must be > 0: without it a jump never comes down.
+    """
 
     gravity: float = 0.002
     background_factor: float = 1.0
@@ -175,7 +189,8 @@ class FightConfig:
 def load_config(config: str | Path | FightConfig = "default", **overrides: Any) -> FightConfig:
     """A FightConfig from a name in configs/, a .toml path or a FightConfig, plus overrides."""
     if isinstance(config, FightConfig):
-        return config.replace(**overrides) if overrides else config
+        checked = config.replace(**overrides)  # one built by hand is checked here, as a file is
+        return checked if overrides else config
     data, path = read_toml(config, CONFIG_DIR, "config")
     source = f"{path} with overrides {overrides}" if overrides else str(path)
     return build_config(FightConfig, _merge(data, overrides), source)
@@ -237,6 +252,13 @@ def build_config(cls: type, data: Any, source: str, prefix: str = "") -> Any:
             raise ConfigError(
                 f"{source}: unknown key {prefix + str(key)!r}; allowed: {', '.join(names)}"
             )
+    for field in dataclasses.fields(cls):
+        required = field.default is dataclasses.MISSING
+        if required and field.default_factory is dataclasses.MISSING and field.name not in data:
+            raise ConfigError(
+                f"{source}: missing key {prefix + field.name!r}; {prefix or 'a config'} needs "
+                f"{', '.join(names)}"
+            )
     values = {}
     for name in names:
         if name in data:
@@ -265,16 +287,22 @@ def _convert(hint: Any, value: Any, source: str, key: str) -> Any:
             raise ConfigError(f"{source}: {key} must be true or false, got {value!r}")
         return value
     if hint is float:
-        if (
-            isinstance(value, bool)
-            or not isinstance(value, (int, float))
-            or not math.isfinite(value)
-        ):
+        # numbers.Real holds numpy's floats and ints too (a numpy scalar is the number it holds)
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
             raise ConfigError(f"{source}: {key} must be a finite number, got {value!r}")
-        return float(value)
+        value = float(value)
+        if not abs(value) <= FLOAT_MAX:  # NaN fails too
+            raise ConfigError(
+                f"{source}: {key} must be a finite number of magnitude <= {FLOAT_MAX:g}, "
+                f"got {value!r}"
+            )
+        return value
     if hint is int:
-        if isinstance(value, bool) or not isinstance(value, int):
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral):
             raise ConfigError(f"{source}: {key} must be an integer, got {value!r}")
+        value = int(value)
+        if abs(value) > INT_MAX:
+            raise ConfigError(f"{source}: {key} must be an integer in +-{INT_MAX}, got {value!r}")
         return value
     if hint is str:
         if not isinstance(value, str):
@@ -290,7 +318,7 @@ def _fail(source: str, key: str, value: Any, allowed: str) -> None:
 _POSITIVE = {
     ArenaConfig: ("width", "height"),
     Block: ("width", "height"),
-    PhysicsConfig: ("background_factor", "frame_time"),
+    PhysicsConfig: ("gravity", "background_factor", "frame_time"),
     AttackConfig: ("hitbox_width", "hitbox_height"),
     FighterConfig: ("width", "height", "crouch_height", "mass", "health"),
     FightConfig: ("max_cycles", "frame_skip", "stocks"),
@@ -340,7 +368,7 @@ def _check(config: Any, source: str, prefix: str) -> None:
 
 
 def _check_arena(config: FightConfig, source: str) -> None:
-    arena, fighter = config.arena, config.fighter
+    arena = config.arena
     if not arena.blocks:
         _fail(source, "arena.blocks", [], "the stage needs at least one block")
     for index, block in enumerate(arena.blocks):
@@ -367,18 +395,32 @@ def _check_arena(config: FightConfig, source: str) -> None:
         )
     if len(arena.spawns) != 2:
         _fail(source, "arena.spawns", arena.spawns, "exactly two spawn x positions")
-    margin = config.physics.out_bound_distance
     for index, x in enumerate(arena.spawns):
-        key = f"arena.spawns[{index}]"
-        if (
-            x - arena.spawn_jitter < margin
-            or x + fighter.width + arena.spawn_jitter > arena.width - margin
-        ):
-            _fail(source, key, x, "the fighter (with jitter) must spawn inside the arena's bounds")
-        if spawn_block(arena, x, fighter.width) is None:
-            _fail(source, key, x, "the fighter must spawn above a block of the stage")
-        if spawn_block(arena, x, fighter.width).y - fighter.height < 0:
-            _fail(source, key, x, "the fighter is too tall to stand on the block under it")
+        _check_spawn(config, source, f"arena.spawns[{index}]", x)
+
+
+def _check_spawn(config: FightConfig, source: str, key: str, x: float) -> None:
+    """Every spawn the jitter can draw, [x - jitter, x + jitter], must stand on the stage."""
+    arena, fighter = config.arena, config.fighter
+    low, high = x - arena.spawn_jitter, x + arena.spawn_jitter
+    margin = config.physics.out_bound_distance
+    jitter = f" (spawn_jitter {arena.spawn_jitter:g}: {low:g}..{high:g})" if low < high else ""
+    if low < margin or high + fighter.width > arena.width - margin:
+        _fail(source, key, x, f"the fighter{jitter} must spawn inside the arena's bounds")
+    # a block is under a left edge at s when s lies in (block.x - width, block.x + block.width)
+    under = sorted(
+        (block for block in arena.blocks if block.x - fighter.width < high and low < block.right),
+        key=lambda block: block.x,
+    )
+    point = low  # the first left edge not yet known to be covered
+    for block in under:
+        if block.x - fighter.width >= point:
+            break
+        point = max(point, block.right)
+    if point <= high:
+        _fail(source, key, x, f"the fighter{jitter} must spawn above a block of the stage")
+    if min(block.y for block in under) < fighter.height:
+        _fail(source, key, x, f"the fighter{jitter} is too tall to stand on the block under it")
 
 
 def spawn_block(arena: ArenaConfig, x: float, width: float) -> Block | None:

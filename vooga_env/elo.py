@@ -12,6 +12,8 @@ every pairing, then game 1 of every pairing, and so on, so no pairing's games al
 
 from __future__ import annotations
 
+import math
+import numbers
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -68,8 +70,13 @@ class EloTable:
     def __init__(
         self, names: Sequence[str] = (), k: float = K_FACTOR, start: float = START_RATING
     ) -> None:
-        self.k = k
-        self.start = start
+        for name, value, allowed in (("k", k, "> 0"), ("start", start, "finite")):
+            if isinstance(value, bool) or not isinstance(value, numbers.Real):
+                raise TypeError(f"{name} must be a number {allowed}, got {value!r}")
+            if not math.isfinite(value) or (name == "k" and value <= 0):
+                raise ValueError(f"{name} must be a number {allowed}, got {value!r}")
+        self.k = float(k)
+        self.start = float(start)
         self.entries: dict[str, Entry] = {}
         for name in names:
             self.add(name)
@@ -86,6 +93,9 @@ class EloTable:
         """One game between `a` and `b` in which `a` scored `score_a`."""
         if a == b:
             raise ValueError(f"{a!r} cannot be rated against itself")
+        for name in (a, b):
+            if name not in self.entries:
+                raise KeyError(f"{name!r} is not rated; rated: {', '.join(self.entries)}")
         entry_a, entry_b = self.entries[a], self.entries[b]
         entry_a.rating, entry_b.rating = update(entry_a.rating, entry_b.rating, score_a, self.k)
         for entry, score in ((entry_a, score_a), (entry_b, 1.0 - score_a)):
@@ -157,6 +167,8 @@ def round_robin(
     `entrants`: name -> policy spec (anything `make_policy` takes), or a list of specs named by
     their policies. Each pairing's match seed comes from `seed` and the two entrants' places.
     """
+    if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise ValueError(f"seed must be a non-negative int, got {seed!r}")
     named = _named(entrants)
     if len(named) < 2:
         raise ValueError(f"a tournament needs at least two entrants, got {list(named)}")

@@ -61,6 +61,16 @@ class StepEvents:
     over: bool = False
 
 
+def _action(field: str, value: object) -> Action:
+    """`value` as an Action, or a ValueError naming `field`, the value and the range."""
+    try:
+        return Action(value)
+    except ValueError:
+        raise ValueError(
+            f"{field} = {value!r} is not an action: an int in 0..{len(Action) - 1}"
+        ) from None
+
+
 def hitbox_box(
     fighter: Fighter, attack: AttackConfig, facing: float
 ) -> tuple[float, float, float, float]:
@@ -74,6 +84,8 @@ class Fight:
     """The game: stage, fighters, attacks, stocks; stepped by actions, reset by a seeded RNG."""
 
     def __init__(self, config: FightConfig) -> None:
+        if not isinstance(config, FightConfig):
+            raise TypeError(f"config must be a FightConfig (see load_config), got {config!r}")
         self.config = config
         arena, physics = config.arena, config.physics
         self.engine = FightPhysicsEngine(
@@ -107,6 +119,7 @@ class Fight:
         self.frame = 0
         self.steps = 0
         self.spawns = [0.0, 0.0]
+        self._before_step = self.snapshot()
         # MotionActions are immutable: one per fighter and walking action, and per slide direction
         self._walks = [
             {a: MotionAction(f, WALK[a] * SIDES[f.index], 0.0) for a in WALK} for f in self.fighters
@@ -118,6 +131,8 @@ class Fight:
 
     def reset(self, rng: np.random.Generator) -> None:
         """Start a new fight: full stocks and health, spawns jittered by `rng`."""
+        if not isinstance(rng, np.random.Generator):
+            raise TypeError(f"rng must be a numpy Generator (np.random.default_rng), got {rng!r}")
         jitter = self.config.arena.spawn_jitter
         self.spawns = [
             x + (float(rng.uniform(-jitter, jitter)) if jitter > 0 else 0.0)
@@ -130,15 +145,46 @@ class Fight:
         self.steps = 0
 
     def step(self, actions: tuple[int, int]) -> StepEvents:
-        """Run one env step (frame_skip physics frames) with each fighter's action repeated."""
+        """Run one env step (frame_skip physics frames) with each fighter's action repeated.
+
+        A step that raises (a custom collision kind's error, say) leaves the fight as it was.
+        """
         events = StepEvents()
-        actions = (Action(actions[0]), Action(actions[1]))
-        for _ in range(self.config.frame_skip):
-            self._frame(actions, events)
-            if events.over:
-                break
+        actions = (_action("actions[0]", actions[0]), _action("actions[1]", actions[1]))
+        self._before_step = self.snapshot()
+        try:
+            for _ in range(self.config.frame_skip):
+                self._frame(actions, events)
+                if events.over:
+                    break
+        except BaseException:
+            self.undo_step()
+            raise
         self.steps += 1
         return events
+
+    def undo_step(self) -> None:
+        """Go back to just before the last `step` (the env's reward failed: it did not happen)."""
+        self.restore(self._before_step)
+
+    def snapshot(self) -> tuple:
+        """What a step changes: the frame and step counts, every fighter's and hitbox's state."""
+        sprites = [sprite for fighter in self.fighters for sprite in (fighter, fighter.hitbox)]
+        struck = [set(fighter.hitbox.struck) for fighter in self.fighters]
+        attributes = [(sprite, sprite.__dict__.copy()) for sprite in sprites]
+        return self.frame, self.steps, attributes, struck
+
+    def restore(self, snapshot: tuple) -> None:
+        """Go back to a `snapshot()` of this fight (its values were checked when first set)."""
+        self.frame, self.steps, sprites, struck = snapshot
+        for sprite, attributes in sprites:
+            sprite.__dict__.update(attributes)
+            sprite.status.reset()
+            sprite.response.reset()
+        for fighter, hits in zip(self.fighters, struck):
+            fighter.hitbox.struck.clear()
+            fighter.hitbox.struck.update(hits)
+        self.hit_reaction.hits.clear()
 
     @property
     def over(self) -> bool:

@@ -8,6 +8,7 @@ from typing import Any
 import gymnasium
 import numpy as np
 
+from vooga_env.actions import action_index, check_seat
 from vooga_env.config import FightConfig
 from vooga_env.parallel import AGENTS, FightParallelEnv
 from vooga_env.policies import Policy, make_policy
@@ -38,8 +39,8 @@ class FightEnv(gymnasium.Env):
         render_mode: str | None = None,
         **kwargs: Any,
     ) -> None:
-        if seat not in (0, 1, "random"):
-            raise ValueError(f"seat must be 0, 1 or 'random', got {seat!r}")
+        if seat != "random":
+            seat = check_seat(seat, "0, 1 or 'random'")
         self.fight_env = FightParallelEnv(config, render_mode=render_mode, **kwargs)
         self.metadata = self.fight_env.metadata
         self.render_mode = render_mode
@@ -61,7 +62,13 @@ class FightEnv(gymnasium.Env):
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[np.ndarray, dict[str, Any]]:
-        super().reset(seed=seed)
+        if seed is not None and (
+            isinstance(seed, (bool, np.bool_))
+            or not isinstance(seed, (int, np.integer))
+            or seed < 0
+        ):
+            raise ValueError(f"seed must be a non-negative int or None, got {seed!r}")
+        super().reset(seed=None if seed is None else int(seed))
         fight_seed = int(self.np_random.integers(2**31))
         if self.seat_choice == "random":
             self.seat = int(self.np_random.integers(2))
@@ -75,7 +82,7 @@ class FightEnv(gymnasium.Env):
         if self._opponent_observation is None:
             raise RuntimeError("step() called before reset()")
         me, them = AGENTS[self.seat], AGENTS[1 - self.seat]
-        opponent_action = int(self.opponent.act(self._opponent_observation))
+        opponent_action = self._opponent_action(them)
         observations, rewards, terminations, truncations, infos = self.fight_env.step(
             {me: action, them: opponent_action}
         )
@@ -87,6 +94,17 @@ class FightEnv(gymnasium.Env):
             "opponent_action": opponent_action,
         }
         return observations[me], rewards[me], terminations[me], truncations[me], info
+
+    def _opponent_action(self, seat: str) -> int:
+        """The opponent's action; a bad one is blamed on the opponent, not on its seat."""
+        who = f"opponent {self.opponent.name!r} (playing {seat})"
+        try:
+            action = self.opponent.act(self._opponent_observation)
+        except TypeError as error:
+            raise TypeError(f"{who}: {error}") from error
+        except ValueError as error:
+            raise ValueError(f"{who}: {error}") from error
+        return action_index(f"the action of {who}", action)
 
     def render(self) -> np.ndarray | None:
         return self.fight_env.render()

@@ -21,7 +21,7 @@ from gymnasium import spaces
 from gymnasium.vector import AutoresetMode
 from gymnasium.vector.utils import batch_space
 
-from vooga_env.actions import Action
+from vooga_env.actions import Action, batch_actions, check_seat
 from vooga_env.config import FightConfig
 from vooga_env.observations import HIGH, LOW, OBSERVATION_SIZE
 from vooga_env.parallel import AGENTS
@@ -59,8 +59,7 @@ class FightVectorEnv(gymnasium.vector.VectorEnv):
         **overrides: Any,
     ) -> None:
         self._spectator: Spectator | None = None  # first: gymnasium's __del__ closes it
-        if seat not in (0, 1):
-            raise ValueError(f"seat must be 0 or 1, got {seat!r}")
+        seat = check_seat(seat)
         if render_mode not in (None, "rgb_array"):
             raise ValueError(f"render_mode must be None or 'rgb_array', got {render_mode!r}")
         self.fights = VectorFight(num_envs, config, threads=threads, **overrides)
@@ -98,8 +97,12 @@ class FightVectorEnv(gymnasium.vector.VectorEnv):
         if self._observations is None:
             raise RuntimeError("step() called before reset()")
         pairs = np.empty((self.num_envs, 2), dtype=np.int64)
-        pairs[:, self.seat] = self._learner_actions(actions)
-        pairs[:, 1 - self.seat] = self.opponent.act(self._observations[:, 1 - self.seat])
+        pairs[:, self.seat] = batch_actions("actions", actions, self.num_envs)
+        pairs[:, 1 - self.seat] = batch_actions(
+            f"opponent {self.opponent!r}: act(observations)",
+            self.opponent.act(self._observations[:, 1 - self.seat]),
+            self.num_envs,
+        )
         observations, rewards, terminated, truncated, info = self.fights.step(pairs)
         if self._spectator is not None:
             self._spectator.step(int(pairs[0, 0]), int(pairs[0, 1]))
@@ -119,12 +122,6 @@ class FightVectorEnv(gymnasium.vector.VectorEnv):
     def close_extras(self, **kwargs: Any) -> None:
         if self._spectator is not None:
             self._spectator.close()
-
-    def _learner_actions(self, actions: Any) -> np.ndarray:
-        actions = np.asarray(actions)
-        if actions.shape != (self.num_envs,):
-            raise ValueError(f"actions must have shape ({self.num_envs},), got {actions.shape}")
-        return actions
 
     def _infos(self, info: dict[str, Any]) -> dict[str, Any]:
         """The learner's events for every fight, and `final_obs`/`final_info` where one ended."""

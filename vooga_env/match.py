@@ -303,8 +303,7 @@ def run_match(
     n games. `progress(record)` runs after each game; `step_hook(record)` after each step.
     Config overrides (`max_cycles=200`, ...) go to the env.
     """
-    if isinstance(episodes, bool) or not isinstance(episodes, int) or episodes < 1:
-        raise ValueError(f"episodes must be a positive int, got {episodes!r}")
+    _check_arguments(episodes, seed, names, record_frames, progress, step_hook)
     import vooga_env
 
     policies = (make_policy(policy_a), make_policy(policy_b))
@@ -338,6 +337,34 @@ def run_match(
     finally:
         env.close()
     return result
+
+
+def _check_arguments(
+    episodes: Any, seed: Any, names: Any, record_frames: Any, progress: Any, step_hook: Any
+) -> None:
+    """run_match's own arguments, checked before any game starts."""
+    for name, value, low in (
+        ("episodes", episodes, 1),
+        ("seed", seed, 0),
+        ("record_frames", record_frames, 0),
+    ):
+        if (
+            isinstance(value, (bool, np.bool_))
+            or not isinstance(value, (int, np.integer))
+            or value < low
+        ):
+            raise ValueError(f"{name} must be an int >= {low}, got {value!r}")
+    if names is not None and (
+        not isinstance(names, (tuple, list))
+        or len(names) != 2
+        or not all(isinstance(n, str) for n in names)
+    ):
+        raise TypeError(f"names must be None or two strings (A's, B's), got {names!r}")
+    for name, hook in (("progress", progress), ("step_hook", step_hook)):
+        if hook is not None and not callable(hook):
+            raise TypeError(
+                f"{name} must be None or a callable taking an EpisodeRecord, got {hook!r}"
+            )
 
 
 def wilson_interval(successes: int, trials: int, z: float = WILSON_Z95) -> tuple[float, float]:

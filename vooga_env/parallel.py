@@ -9,10 +9,9 @@ import numpy as np
 from gymnasium import spaces
 from gymnasium.utils import seeding
 from pettingzoo import ParallelEnv
-from pettingzoo.utils import parallel_to_aec
 from pettingzoo.utils.env import AECEnv
 
-from vooga_env.actions import Action
+from vooga_env.actions import Action, action_index
 from vooga_env.config import FightConfig, load_config
 from vooga_env.fight import Fight
 from vooga_env.observations import HIGH, LOW, OBSERVATION_SIZE
@@ -213,26 +212,12 @@ class FightParallelEnv(ParallelEnv):
         for agent in self.possible_agents:
             if agent not in actions:
                 raise KeyError(f"no action for {agent!r}; every live agent needs one")
-            chosen.append(_action_index(agent, actions[agent]))
+            chosen.append(action_index(f"action for {agent}", actions[agent]))
         return chosen[0], chosen[1]
 
     def _check_agent(self, agent: str) -> None:
         if agent not in self.possible_agents:
             raise KeyError(f"unknown agent {agent!r}; agents: {self.possible_agents}")
-
-
-def _action_index(agent: str, action: Any) -> int:
-    """The action as a plain int, or a clear error naming the agent and the value."""
-    value = action
-    if isinstance(action, np.ndarray) and action.shape == ():
-        value = action.item()
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
-        raise TypeError(
-            f"action for {agent} must be an int in 0..{len(Action) - 1}, got {action!r}"
-        )
-    if not 0 <= value < len(Action):
-        raise ValueError(f"action for {agent} must be in 0..{len(Action) - 1}, got {action!r}")
-    return int(value)
 
 
 def parallel_env(**kwargs: Any) -> FightParallelEnv:
@@ -241,8 +226,10 @@ def parallel_env(**kwargs: Any) -> FightParallelEnv:
 
 
 def env(**kwargs: Any) -> AECEnv:
-    """The same fight as an AEC env (PettingZoo's `parallel_to_aec`)."""
-    return parallel_to_aec(parallel_env(**kwargs))
+    """The same fight as an AEC env (PettingZoo's `parallel_to_aec`, checking its input first)."""
+    from vooga_env.aec import FightAECEnv
+
+    return FightAECEnv(parallel_env(**kwargs))
 
 
 raw_env = parallel_env

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from vooga_env.actions import Action
+from vooga_env.actions import Action, action_index
 from vooga_env.observations import OBSERVATION_NAMES
 
 _I = {name: index for index, name in enumerate(OBSERVATION_NAMES)}
@@ -334,6 +334,18 @@ SCRIPTED: dict[str, type[Scripted]] = {
 }
 
 
+def _one_action(name: str, action: Any) -> int:
+    """A policy's action as an int in 0..9 (a one-element array counts), or an error naming it."""
+    if isinstance(action, np.ndarray):
+        if action.size != 1:
+            raise ValueError(
+                f"the action of policy {name!r} must be one int in 0..{len(Action) - 1}, "
+                f"got {action!r}"
+            )
+        action = action.reshape(())
+    return action_index(f"the action of policy {name!r}", action)
+
+
 class CallablePolicy(Policy):
     """Wraps any `obs -> action` callable."""
 
@@ -342,7 +354,7 @@ class CallablePolicy(Policy):
         self.name = getattr(function, "__name__", "callable")
 
     def act(self, observation: np.ndarray) -> int:
-        return int(self.function(observation))
+        return _one_action(self.name, self.function(observation))
 
 
 class PredictPolicy(Policy):
@@ -355,7 +367,7 @@ class PredictPolicy(Policy):
 
     def act(self, observation: np.ndarray) -> int:
         action, _ = self.model.predict(observation, deterministic=self.deterministic)
-        return int(np.asarray(action).item())
+        return _one_action(self.name, np.asarray(action))
 
     def predict(self, observation, state=None, episode_start=None, deterministic=True):
         return self.model.predict(observation, state, episode_start, deterministic)
@@ -368,6 +380,10 @@ def make_policy(spec: str | Path | Policy | Callable | Any, seed: int | None = N
     A Policy given with a seed comes back as a copy reseeded with it (the original may be shared,
     say by several envs, and each must draw its own numbers to be repeatable).
     """
+    if seed is not None and (
+        isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0
+    ):
+        raise ValueError(f"seed must be a non-negative int or None, got {seed!r}")
     if isinstance(spec, Policy):
         if seed is None:
             return spec
@@ -391,6 +407,8 @@ def make_policy(spec: str | Path | Policy | Callable | Any, seed: int | None = N
             "a saved model (.zip) or an exported fighter (.npz)"
         )
     if hasattr(spec, "predict"):
+        if not callable(spec.predict):
+            raise TypeError(f"a policy's predict must be callable, got {spec.predict!r}")
         return PredictPolicy(spec, name=type(spec).__name__)
     if callable(spec):
         return CallablePolicy(spec)

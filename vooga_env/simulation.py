@@ -16,6 +16,7 @@ holds one [fighter_0, fighter_1] pair per name in `INFO_KEYS`, as plain Python n
 
 from __future__ import annotations
 
+import math
 from typing import Any, Protocol
 
 import numpy as np
@@ -81,7 +82,11 @@ class EngineSimulation:
     def step(self, first: int, second: int) -> StepResult:
         fight = self.fight
         events = fight.step((first, second))
-        rewards = self.reward_fn(fight, events)
+        try:
+            rewards = _reward_pair(self.reward_fn, self.reward_fn(fight, events))
+        except BaseException:
+            fight.undo_step()  # a step whose reward failed did not happen
+            raise
         terminated = events.over
         truncated = not terminated and fight.steps >= self._max_cycles
         landed, blocked = [0, 0], [0, 0]
@@ -105,7 +110,6 @@ class EngineSimulation:
             events.rung_out,
             events.knocked_out,
         )
-        rewards = [float(rewards[0]), float(rewards[1])]
         return observe_both(fight), rewards, terminated, truncated, winner, columns
 
     def observe(self) -> np.ndarray:
@@ -118,6 +122,20 @@ class EngineSimulation:
         ]
 
 
+def _reward_pair(reward_fn: RewardFn, rewards: Any) -> list[float]:
+    """A reward function's result as [reward_0, reward_1], or an error that blames it."""
+    try:
+        pair = [float(reward) for reward in rewards]
+    except (TypeError, ValueError):
+        pair = []
+    if len(pair) != 2 or not all(math.isfinite(reward) for reward in pair):
+        raise ValueError(
+            f"reward_fn {reward_fn!r} returned {rewards!r}: it must return two finite numbers, "
+            "(reward_0, reward_1)"
+        )
+    return pair
+
+
 def make_simulation(
     config: FightConfig,
     backend: str = "auto",
@@ -127,6 +145,11 @@ def make_simulation(
     """The simulation `backend` names; "auto": compiled when it can run this env, else engine."""
     if backend not in BACKENDS:
         raise ValueError(f"backend = {backend!r} is not allowed: one of {', '.join(BACKENDS)}")
+    if reward_fn is not None and not callable(reward_fn):
+        raise TypeError(
+            f"reward_fn = {reward_fn!r} is not allowed: a callable (fight, events) -> "
+            "(reward_0, reward_1), or None for the config's HitAndRingOutReward"
+        )
     if backend == "engine":
         return EngineSimulation(config, reward_fn)
     from vooga_env.vector.engine import numba_available

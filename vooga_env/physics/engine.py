@@ -106,6 +106,7 @@ class FightPhysicsEngine(PhysicsEngine):
         )
 
     def set_next_location_increment(self, sprite: SpriteTemplate, dx: float, dy: float) -> None:
+        dx, dy = validation.finite("dx", dx), validation.finite("dy", dy)
         sprite.increment_x += dx * self.background_factor
         sprite.increment_y += dy * self.background_factor
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numbers
 from collections.abc import Iterable, Iterator
 
 from vooga_env.physics.sprites import FighterBody, PlatformBlock, SpriteTemplate
@@ -58,8 +59,9 @@ class SpriteGroupTemplate:
     def add_sprite(self, sprite: SpriteTemplate, team_index: int) -> None:
         """Add one sprite to team `team_index`; `len(teams)` starts a new team."""
         _check_all([sprite], SpriteTemplate, "sprite")
-        if isinstance(team_index, bool) or not isinstance(team_index, int):
+        if isinstance(team_index, bool) or not isinstance(team_index, numbers.Integral):
             raise TypeError(f"team_index must be an int, got {team_index!r}")
+        team_index = int(team_index)
         if not 0 <= team_index <= len(self._teams):
             raise IndexError(
                 f"team_index must be in 0..{len(self._teams)} (the last starts a new team), "

@@ -31,6 +31,10 @@ class SpriteTemplate:
     sprite's creation order.
     """
 
+    x = Checked(validation.finite)
+    y = Checked(validation.finite)
+    vx = Checked(validation.finite)
+    vy = Checked(validation.finite)
     width = Checked(validation.positive)
     height = Checked(validation.positive)
     mass = Checked(validation.mass)
@@ -51,14 +55,14 @@ class SpriteTemplate:
         gravity_scale: float = 1.0,
         name: str = "",
     ) -> None:
-        self.x = validation.finite("x", x)
-        self.y = validation.finite("y", y)
+        self.x = x
+        self.y = y
         self.width = width
         self.height = height
         self.mass = mass
         self.speed = speed
-        self.vx = validation.finite("vx", vx)
-        self.vy = validation.finite("vy", vy)
+        self.vx = vx
+        self.vy = vy
         self.gravity_scale = gravity_scale
         self.name = name
         self.active = True
@@ -94,13 +98,15 @@ class SpriteTemplate:
 
         Then clear the increment, the reactions' requests and the collision status for next frame.
         """
+        # written past the `Checked` descriptors: the engine's own results, from checked values
+        state = self.__dict__
         if self.status.collided:
-            self.x, self.vx = self.response.resolve(0, self.x, self.increment_x, self.vx)
-            self.y, self.vy = self.response.resolve(1, self.y, self.increment_y, self.vy)
+            state["x"], state["vx"] = self.response.resolve(0, self.x, self.increment_x, self.vx)
+            state["y"], state["vy"] = self.response.resolve(1, self.y, self.increment_y, self.vy)
             self.response.reset()
         else:
-            self.x += self.increment_x
-            self.y += self.increment_y
+            state["x"] = self.x + self.increment_x
+            state["y"] = self.y + self.increment_y
         self.increment_x = self.increment_y = 0.0
         self.status.reset()
 

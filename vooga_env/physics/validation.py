@@ -3,13 +3,19 @@
 from __future__ import annotations
 
 import math
+import numbers
 from collections.abc import Callable
 from typing import Any
 
 
 def finite(name: str, value: Any) -> float:
-    """Return `value` as a float, or raise naming `name` if it is not a finite number."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+    """Return `value` as a float, or raise naming `name` if it is not a finite number.
+
+    numpy's scalars are numbers.Real too, and come back as the float they hold.
+    """
+    if type(value) is float and value - value == 0.0:  # the engine's own writes: finite floats
+        return value
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise TypeError(f"{name} must be a number, got {value!r} ({type(value).__name__})")
     value = float(value)
     if not math.isfinite(value):
@@ -35,7 +41,7 @@ def non_negative(name: str, value: Any) -> float:
 
 def mass(name: str, value: Any) -> float:
     """A mass: a finite number > 0, or math.inf for a sprite no reaction can move."""
-    if isinstance(value, (int, float)) and not isinstance(value, bool) and value == math.inf:
+    if isinstance(value, numbers.Real) and not isinstance(value, bool) and value == math.inf:
         return math.inf
     return positive(name, value)
 

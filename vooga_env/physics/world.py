@@ -20,6 +20,7 @@ class World:
     increment; each MotionAction adds to its sprite's increment; `check_group_collision` flags the
     contacts and records the reactions; each sprite takes the reactions' result if it collided and
     its increment otherwise; sprites out of the arena are put back; every status is reset.
+    A step that raises (say, a custom reaction's error) leaves every sprite as it was before it.
     """
 
     def __init__(
@@ -51,14 +52,39 @@ class World:
             if action.sprite not in group:
                 raise ValueError(f"motion action for {action.sprite!r}, which is not in this world")
         sprites = [sprite for sprite in group.sprites() if sprite.active]
-        for sprite in sprites:
-            engine.integrate(sprite, elapsed_time)
-        for action in motion_actions:
-            if action.sprite.active:
-                engine.process(action, elapsed_time)
-        contacts = self.collision.check_group_collision(elapsed_time)
-        for sprite in sprites:
-            sprite.update()
-            if sprite.movable:
-                engine.keep_in_bounds(sprite)
+        saved = [
+            (
+                sprite,
+                sprite.x,
+                sprite.y,
+                sprite.vx,
+                sprite.vy,
+                sprite.increment_x,
+                sprite.increment_y,
+            )
+            for sprite in sprites
+        ]
+        try:
+            for sprite in sprites:
+                engine.integrate(sprite, elapsed_time)
+            for action in motion_actions:
+                if action.sprite.active:
+                    engine.process(action, elapsed_time)
+            contacts = self.collision.check_group_collision(elapsed_time)
+            for sprite in sprites:
+                sprite.update()
+                if sprite.movable:
+                    engine.keep_in_bounds(sprite)
+        except BaseException:
+            _restore(saved)
+            raise
         return contacts
+
+
+def _restore(saved: list[tuple]) -> None:
+    """Undo a step that raised half-way: each sprite as it was, nothing pending, no contacts."""
+    for sprite, x, y, vx, vy, increment_x, increment_y in saved:
+        sprite.x, sprite.y, sprite.vx, sprite.vy = x, y, vx, vy
+        sprite.increment_x, sprite.increment_y = increment_x, increment_y
+        sprite.response.reset()
+        sprite.status.reset()

@@ -100,9 +100,20 @@ class VectorFight:
     def seed(self, seed: int | list[int | None] | None = None) -> None:
         """Seed every fight's spawn RNG: fight i gets `seed + i` (or `seed[i]`; None: entropy)."""
         if isinstance(seed, (list, tuple, np.ndarray)):
+            if len(seed) != self.num_fights:
+                raise ValueError(
+                    f"seed: need {self.num_fights} seeds, one per fight, got {len(seed)}"
+                )
+            for index, value in enumerate(seed):
+                if value is not None and (
+                    isinstance(value, (bool, np.bool_))
+                    or not isinstance(value, (int, np.integer))
+                    or value < 0
+                ):
+                    raise ValueError(
+                        f"seed[{index}] = {value!r}: each seed must be a non-negative int or None"
+                    )
             seeds = [None if s is None else int(s) for s in seed]
-            if len(seeds) != self.num_fights:
-                raise ValueError(f"need {self.num_fights} seeds, got {len(seeds)}")
         elif seed is None:
             seeds = [None] * self.num_fights
         else:
@@ -260,7 +271,10 @@ class VectorFight:
             else:
                 raise TypeError(f"actions must be integers in 0..9, got dtype {actions.dtype}")
         if actions.min() < 0 or actions.max() > 9:
-            raise ValueError("actions must be in 0..9")
+            fight, seat = np.argwhere((actions < 0) | (actions > 9))[0].tolist()
+            raise ValueError(
+                f"actions[{fight}, {seat}] = {int(actions[fight, seat])}: actions must be in 0..9"
+            )
         return actions.astype(np.int64, copy=False)
 
     def __repr__(self) -> str:

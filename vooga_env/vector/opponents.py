@@ -216,6 +216,13 @@ def scripted_actions(name: str, observations: np.ndarray, draws: np.ndarray) -> 
     return np.where(needed, recover, chosen).astype(np.int64)
 
 
+def _check_seed(seed: object) -> None:
+    if seed is not None and (
+        isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)) or seed < 0
+    ):
+        raise ValueError(f"opponent seed must be a non-negative int or None, got {seed!r}")
+
+
 def batch_opponent(opponent: Any, seed: int | None = None) -> Any:
     """A scripted fighter's name as a `VectorOpponent`, or an object that already has
     `act(observations (n, 41)) -> actions (n,)`; anything else is refused, naming it."""
@@ -236,10 +243,12 @@ class VectorOpponent:
     def __init__(self, name: str, seed: int | None = None) -> None:
         if name not in NAMES:
             raise ValueError(f"unknown scripted fighter {name!r}; known: {', '.join(NAMES)}")
+        _check_seed(seed)
         self.name = name
         self.rng = np.random.default_rng(seed)
 
     def reset(self, seed: int | None = None) -> None:
+        _check_seed(seed)
         if seed is not None:
             self.rng = np.random.default_rng(seed)
 

@@ -34,7 +34,7 @@ import numpy as np
 from gymnasium import spaces
 from stable_baselines3.common.vec_env import VecEnv
 
-from vooga_env.actions import Action
+from vooga_env.actions import Action, batch_actions, check_seat
 from vooga_env.config import FightConfig
 from vooga_env.observations import HIGH, LOW, OBSERVATION_SIZE
 from vooga_env.spectator import Spectator
@@ -60,8 +60,7 @@ class FightVecEnv(VecEnv):
         threads: int = 1,
         **overrides: Any,
     ) -> None:
-        if seat not in (0, 1):
-            raise ValueError(f"seat must be 0 or 1, got {seat!r}")
+        seat = check_seat(seat)
         if render_mode not in (None, "rgb_array"):
             raise ValueError(f"render_mode must be None or 'rgb_array', got {render_mode!r}")
         self.fights = VectorFight(num_fights, config, backend=backend, threads=threads, **overrides)
@@ -120,7 +119,13 @@ class FightVecEnv(VecEnv):
         return self._slots(observations)
 
     def step_async(self, actions: np.ndarray) -> None:
-        self._actions = np.asarray(actions)
+        actions = np.asarray(actions)
+        if actions.size != self.num_envs or actions.ndim > 2:
+            raise ValueError(
+                f"actions must hold one action per slot, {self.num_envs} "
+                f"(shape ({self.num_envs},)), got shape {actions.shape}"
+            )
+        self._actions = actions
 
     def step_wait(self):
         if self._actions is None or self._observations is None:
@@ -130,9 +135,13 @@ class FightVecEnv(VecEnv):
             pairs = actions.reshape(-1, 2)
         else:
             pairs = np.empty((self.fights.num_fights, 2), dtype=np.int64)
-            pairs[:, self.seat] = actions
+            pairs[:, self.seat] = batch_actions("actions", actions, self.num_envs)
             opponent_obs = self._observations[:, 1 - self.seat]
-            pairs[:, 1 - self.seat] = self.opponent.act(opponent_obs)
+            pairs[:, 1 - self.seat] = batch_actions(
+                f"opponent {self.opponent!r}: act(observations)",
+                self.opponent.act(opponent_obs),
+                self.num_envs,
+            )
         observations, rewards, terminated, truncated, info = self.fights.step(pairs)
         if self._spectator is not None:
             self._spectator.step(int(pairs[0, 0]), int(pairs[0, 1]))
