@@ -5,7 +5,7 @@
    the single-agent Gymnasium env, each against `gymnasium.make("CartPole-v1").step`.
 2. The batched engine (`vooga_env.vector.VectorFight`) at N fights, env-steps/s (one env step of
    one fight counts once), against `gymnasium.make_vec("CartPole-v1", num_envs=N,
-   vectorization_mode="vector_entry_point")`, for each backend.
+   vectorization_mode="vector_entry_point")`.
 3. PPO `learn()` steps/s through `vooga_env.vector.sb3.FightVecEnv` (self-play, 2 slots per fight;
    and one learner against a scripted fighter) against PPO on CartPole (SB3's DummyVecEnv) with
    the same n_envs, n_steps and network (torch on one thread for both).
@@ -36,7 +36,7 @@ import gymnasium
 import numpy as np
 
 import vooga_env
-from vooga_env.vector import VectorFight, numba_available
+from vooga_env.vector import VectorFight
 
 SIZES = (1, 16, 256, 1024, 4096)
 
@@ -130,8 +130,8 @@ def gym_steps() -> Callable[[int], int]:
     return gymnasium_steps(gymnasium.make("vooga_env/Fight-v0", opponent="random"))
 
 
-def batched_steps(size: int, backend: str, threads: int | None = None) -> Callable[[int], int]:
-    fights = VectorFight(size, backend=backend, threads=threads)
+def batched_steps(size: int, threads: int | None = None) -> Callable[[int], int]:
+    fights = VectorFight(size, threads=threads)
     fights.reset(seed=0)
     actions = np.random.default_rng(0).integers(10, size=(16, size, 2))
     fights.step(actions[0])  # compiles (or loads) the numba kernel before any timing
@@ -254,7 +254,6 @@ def main(argv: Sequence[str] | None = None) -> dict:
     parser.add_argument("--no-ppo", action="store_true", help="skip the PPO comparison")
     args = parser.parse_args(argv)
     seconds, rounds = (0.05, 1) if args.quick else (1.0, 3)
-    backends = ["numba", "numpy"] if numba_available() else ["numpy"]
 
     single = []
     default_backend = vooga_env.parallel_env().backend
@@ -269,28 +268,24 @@ def main(argv: Sequence[str] | None = None) -> dict:
     print_table("single env, steps/s", single, "steps/s", "CartPole-v1 steps/s")
 
     batched = []
-    for backend in backends:
-        for size in args.sizes:
-            # the default thread count, and one thread as well where the default is more
-            default = VectorFight(size, backend=backend).threads
-            for threads in dict.fromkeys((default, 1)):
-                rate, reference = side_by_side(
-                    batched_steps(size, backend, threads),
-                    cartpole_vector_steps(size),
-                    seconds,
-                    rounds,
+    for size in args.sizes:
+        # the default thread count, and one thread as well where the default is more
+        default = VectorFight(size).threads
+        for threads in dict.fromkeys((default, 1)):
+            rate, reference = side_by_side(
+                batched_steps(size, threads), cartpole_vector_steps(size), seconds, rounds
+            )
+            label = f"{threads} thread{'s' if threads > 1 else ''}"
+            batched.append(
+                row(
+                    f"VectorFight N={size} (numba, {label})",
+                    rate,
+                    reference,
+                    n=size,
+                    backend="numba",
+                    threads=threads,
                 )
-                label = f"{threads} thread{'s' if threads > 1 else ''}"
-                batched.append(
-                    row(
-                        f"VectorFight N={size} ({backend}, {label})",
-                        rate,
-                        reference,
-                        n=size,
-                        backend=backend,
-                        threads=threads,
-                    )
-                )
+            )
     print_table("batched, env-steps/s", batched, "env-steps/s", "CartPole make_vec")
 
     ppo: list[dict] = []
@@ -306,7 +301,7 @@ def main(argv: Sequence[str] | None = None) -> dict:
             "PPO CartPole steps/s",
         )
 
-    batch = VectorFight(4096, backend="numpy")
+    batch = VectorFight(4096)
     batch.reset(seed=0)
     memory = {"state_bytes_4096": batch.state.nbytes, "peak_rss_bytes": peak_rss_bytes()}
     print("\nmemory")

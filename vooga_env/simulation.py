@@ -136,7 +136,7 @@ def make_simulation(
     if render_mode is not None:
         reason = f"render_mode = {render_mode!r}: the viewer draws the engine's fight"
     elif not numba_available():
-        reason = "numba is not installed: pip install 'vooga-env[fast]' (or numba)"
+        reason = "numba is not installed: pip install numba"
     else:
         try:
             check_supported(config, reward_fn)

@@ -1,5 +1,5 @@
 """The batched engine against single envs: bit for bit, step by step, through hits, blocks,
-ring-outs, KOs, truncations and auto-resets, on both backends."""
+ring-outs, KOs, truncations and auto-resets."""
 
 from __future__ import annotations
 
@@ -9,16 +9,9 @@ import pytest
 import vooga_env
 from tests.vector.reference import INFO_KEYS, SCENARIOS, WINNERS, load, summary
 from vooga_env.policies import make_policy
-from vooga_env.vector import VectorFight, numba_available
+from vooga_env.vector import VectorFight
 
-BACKENDS = [
-    "numpy",
-    pytest.param(
-        "numba", marks=pytest.mark.skipif(not numba_available(), reason="numba not installed")
-    ),
-]
-# the numpy backend costs ~2 ms a step whatever N is: short by default, the whole run when slow
-STEPS = {"numpy": 300, "numba": 2000}
+STEPS = 2000  # the whole reference games
 # the references' winner codes (reference.WINNERS) as the batched engine's: -2 while the fight
 # goes on, -1 for a draw
 WINNER_CODES = {
@@ -40,10 +33,10 @@ def state(fights: VectorFight, i: int) -> np.ndarray:
     return np.array([[s.x[f, i], s.y[f, i], s.vx[f, i], s.vy[f, i]] for f in (0, 1)])
 
 
-def replay(backend: str, scenario, steps: int) -> dict[str, int]:
+def replay(scenario, steps: int) -> dict[str, int]:
     """One fight of the batched engine plays a reference game's actions; every step compared."""
     expected = load(scenario)
-    fights = VectorFight(1, config=scenario.config, backend=backend, **dict(scenario.overrides))
+    fights = VectorFight(1, config=scenario.config, **dict(scenario.overrides))
     same(fights.reset(seed=scenario.seed)[0], expected["reset_obs"][0], "first observation")
     resets = iter(range(1, len(expected["reset_steps"])))
     for t in range(steps):
@@ -83,24 +76,16 @@ def replay(backend: str, scenario, steps: int) -> dict[str, int]:
     )
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
-def test_one_batched_fight_replays_every_reference_game(backend):
+def test_one_batched_fight_replays_every_reference_game():
     totals: dict[str, int] = {}
     for scenario in SCENARIOS:
-        for key, count in replay(backend, scenario, STEPS[backend]).items():
+        for key, count in replay(scenario, STEPS).items():
             totals[key] = totals.get(key, 0) + count
     # the games went through every kind of event (summary of the steps that were compared)
     assert all(count > 0 for count in totals.values()), totals
 
 
-@pytest.mark.slow
-def test_numpy_backend_replays_the_whole_reference_games():
-    for scenario in SCENARIOS:
-        replay("numpy", scenario, 2000)
-
-
 def side_by_side(
-    backend: str,
     steps: int,
     fights_in_batch: int = 6,
     seed: int = 40,
@@ -115,9 +100,7 @@ def side_by_side(
         for _ in range(fights_in_batch)
     ]
     observations = [env.reset(seed=seed + i)[0] for i, env in enumerate(singles)]
-    fights = VectorFight(
-        fights_in_batch, config=config, backend=backend, threads=threads, **overrides
-    )
+    fights = VectorFight(fights_in_batch, config=config, threads=threads, **overrides)
     batch_obs = fights.reset(seed=seed)
     names = ["rush", "turtle", "zoner", "edge_guard", "random"]
     policies = [
@@ -178,21 +161,13 @@ def side_by_side(
     return counts
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
-def test_a_batch_of_fights_matches_single_envs_step_by_step(backend):
-    counts = side_by_side(backend, STEPS[backend])
+def test_a_batch_of_fights_matches_single_envs_step_by_step():
+    counts = side_by_side(STEPS)
     assert all(count > 0 for count in counts.values()), counts
 
 
-@pytest.mark.skipif(not numba_available(), reason="numba not installed")
 def test_a_batch_stepped_on_three_threads_matches_single_envs():
-    counts = side_by_side("numba", STEPS["numba"], threads=3)
-    assert all(count > 0 for count in counts.values()), counts
-
-
-@pytest.mark.slow
-def test_numpy_batch_matches_single_envs_over_2000_steps():
-    counts = side_by_side("numpy", 2000)
+    counts = side_by_side(STEPS, threads=3)
     assert all(count > 0 for count in counts.values()), counts
 
 
@@ -212,9 +187,8 @@ VARIANTS = {
 }
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("variant", VARIANTS)
-def test_config_variants_match_single_envs(backend, variant):
+def test_config_variants_match_single_envs(variant):
     config, overrides = VARIANTS[variant]
-    counts = side_by_side(backend, STEPS[backend] // 6, 4, 7, config, **overrides)
+    counts = side_by_side(STEPS // 6, 4, 7, config, **overrides)
     assert counts["hits"] > 0

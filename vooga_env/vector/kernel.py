@@ -1,10 +1,9 @@
-"""The numba backend: `Fight.step` for one fight at a time, compiled, looped over the N fights.
+"""The compiled kernel: `Fight.step` for one fight at a time, compiled, looped over the N fights.
 
-The same rules as `frame.py` (which is written with array operations), here as the scalar code
-of `vooga_env.fight` and `vooga_env.physics` for the default wiring, transcribed expression by
-expression (`kernel_step.py`, `kernel_parts.py`); `_fsum` is CPython's `math.fsum`. Compiled on
-first use (some seconds) and cached on disk (`cache=True`), so later processes start at once.
-Imported only when numba is installed.
+The scalar code of `vooga_env.fight` and `vooga_env.physics` for the default wiring, transcribed
+expression by expression (`kernel_step.py`, `kernel_parts.py`); `_fsum` is CPython's
+`math.fsum`. Compiled on first use (some seconds) and cached on disk (`cache=True`), so later
+processes start at once.
 """
 
 from __future__ import annotations

@@ -330,7 +330,8 @@ def _mulhi(a, b):
 
 @inline
 def _next_double(state_hi, state_lo, inc_hi, inc_lo, i):
-    """PCG64's next double for stream i (as rng.PCG64Streams.next_double)."""
+    """PCG64's next double for stream i: `Generator.random()`, the top 53 bits of the XSL-RR
+    output of the stepped LCG state (see rng.py)."""
     hi, lo = state_hi[i], state_lo[i]
     mul_hi, mul_lo = np.uint64(MUL_HI), np.uint64(MUL_LO)
     new_lo = lo * mul_lo

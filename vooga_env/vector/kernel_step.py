@@ -11,8 +11,8 @@ import numba
 import numpy as np
 
 from vooga_env.vector import kernel_parts as kp
-from vooga_env.vector.frame import ATTACK_MOVE, IS_JUMP, IS_WALK, WALK_DIRECTION
 from vooga_env.vector.kernel_parts import _contact, _fsum, _respawn, _within, jit
+from vooga_env.vector.layout import ATTACK_MOVE, IS_JUMP, IS_WALK, WALK_DIRECTION
 
 
 @jit

@@ -15,13 +15,13 @@ import numpy as np
 
 from vooga_env.config import FightConfig
 from vooga_env.rewards import HitAndRingOutReward
+from vooga_env.vector.layout import MOVES
 
 
 class UnsupportedConfig(ValueError):
     """A config option the batched engine cannot run (yet); the message names it."""
 
 
-MOVES = ("punch", "kick")  # move codes 1 and 2; 0 is no move
 
 
 def check_supported(config: FightConfig, reward_fn: object = None) -> None:
@@ -84,7 +84,7 @@ class FightParams:
     def from_config(cls, config: FightConfig) -> FightParams:
         arena, physics, fighter = config.arena, config.physics, config.fighter
         blocks = arena.blocks
-        attacks = [None, fighter.punch, fighter.kick]
+        attacks = [None, *(getattr(fighter, move) for move in MOVES)]  # by move code
 
         def table(name: str, dtype: type = np.float64) -> np.ndarray:
             values = [0 if a is None else getattr(a, name) for a in attacks]

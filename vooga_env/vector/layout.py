@@ -1,0 +1,49 @@
+"""The kernel's named numbers: action tables, move codes and observation slots, from their sources.
+
+The compiled kernel reads plain arrays and ints, so every number that stands for an action, an
+attack or an observation entry is named here once, derived from `Action`, `ATTACKS` and
+`OBSERVATION_NAMES` rather than written as a literal.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from vooga_env.actions import ATTACKS, JUMPS, WALK, Action
+from vooga_env.observations import FIGHTER_FEATURES, GLOBAL_FEATURES, OBSERVATION_NAMES
+
+# move codes (the state's `move`, the attack tables' index): 0 none, then the attacks
+MOVES = tuple(dict.fromkeys(ATTACKS.values()))  # ("punch", "kick")
+NO_MOVE = 0
+PUNCH, KICK = (MOVES.index(name) + 1 for name in ("punch", "kick"))
+MOVE_CODES = 1 + len(MOVES)
+
+# actions the kernel tests one by one
+DOWN, BLOCK = int(Action.DOWN), int(Action.BLOCK)
+ACTIONS = len(Action)
+# per action code: is it a jump, its move code (NO_MOVE if none), its walk direction (0: none)
+IS_JUMP = np.array([a in JUMPS for a in Action])
+ATTACK_MOVE = np.array([MOVES.index(ATTACKS[a]) + 1 if a in ATTACKS else NO_MOVE for a in Action])
+WALK_DIRECTION = np.array([WALK.get(a, 0.0) for a in Action])
+IS_WALK = WALK_DIRECTION != 0.0
+
+# observation slots: a fighter's features, the same features of its opponent, then the globals
+FEATURES = len(FIGHTER_FEATURES)
+SELF = {name: k for k, name in enumerate(FIGHTER_FEATURES)}
+OPPONENT = FEATURES  # opponent feature k sits at OPPONENT + k
+OBS_X, OBS_Y, OBS_VX, OBS_VY, OBS_FACING = (SELF[n] for n in ("x", "y", "vx", "vy", "facing"))
+OBS_HEALTH, OBS_DAMAGE_TAKEN, OBS_ON_GROUND, OBS_JUMPS_LEFT = (
+    SELF[n] for n in ("health", "damage_taken", "on_ground", "jumps_left")
+)
+OBS_PUNCHING, OBS_KICKING, OBS_BLOCKING, OBS_CROUCHING = (
+    SELF[n] for n in ("punching", "kicking", "blocking", "crouching")
+)
+OBS_MOVE_PROGRESS, OBS_HITBOX_ACTIVE, OBS_HITSTUN, OBS_STOCKS = (
+    SELF[n] for n in ("move_progress", "hitbox_active", "hitstun", "stocks")
+)
+OBS_PUNCH_REACH, OBS_KICK_REACH = SELF["punch_reach"], SELF["kick_reach"]
+OBS_STAGE_LEFT, OBS_STAGE_RIGHT, OBS_TIME_LEFT = (
+    OBSERVATION_NAMES.index(name) for name in GLOBAL_FEATURES
+)
+assert OBSERVATION_NAMES[OPPONENT] == "opponent_" + FIGHTER_FEATURES[0]
+assert MOVES == ("punch", "kick") and (PUNCH, KICK) == (1, 2), "the reach slots assume these"
