@@ -22,8 +22,6 @@ class UnsupportedConfig(ValueError):
     """A config option the batched engine cannot run (yet); the message names it."""
 
 
-
-
 def check_supported(config: FightConfig, reward_fn: object = None) -> None:
     """Raise `UnsupportedConfig` unless the batched engine runs `config` exactly as `Fight` does."""
     collisions = config.collisions

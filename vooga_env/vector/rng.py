@@ -56,4 +56,3 @@ class PCG64Streams:
     @property
     def nbytes(self) -> int:
         return sum(a.nbytes for a in (self.state_hi, self.state_lo, self.inc_hi, self.inc_lo))
-
