@@ -16,6 +16,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from vooga_env import formulas
+
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover - Python 3.10
@@ -383,5 +385,5 @@ def _check_arena(config: FightConfig, source: str) -> None:
 
 def spawn_block(arena: ArenaConfig, x: float, width: float) -> Block | None:
     """The highest block under a fighter whose left edge is at `x`, or None."""
-    under = [block for block in arena.blocks if block.x < x + width and x < block.x + block.width]
+    under = [block for block in arena.blocks if formulas.under(block.x, block.width, x, width)]
     return min(under, key=lambda block: block.y, default=None)
