@@ -18,11 +18,14 @@ SOURCES = (
     HERE / "kernel.py",
     HERE / "kernel_parts.py",
     HERE / "kernel_step.py",
+    HERE / "kernel_observe.py",
+    HERE / "stages.py",
     HERE / "layout.py",
     HERE / "state.py",
     HERE.parent / "observations.py",
     HERE.parent / "actions.py",
-    HERE.parent / "physics" / "contact.py",
+    HERE.parent / "physics" / "formulas.py",
+    HERE.parent / "formulas.py",
 )
 
 
