@@ -62,6 +62,16 @@ class ArenaConfig:
     spawns: tuple[float, ...] = (240.0, 520.0)
     spawn_jitter: float = 0.0
 
+    @property
+    def stage_left(self) -> float:
+        """The stage's left edge (px): the leftmost block's; the reward's edges and observations."""
+        return min(block.x for block in self.blocks)
+
+    @property
+    def stage_right(self) -> float:
+        """The stage's right edge (px): the rightmost block end."""
+        return max(block.x + block.width for block in self.blocks)
+
 
 @dataclass(frozen=True)
 class PhysicsConfig:
@@ -358,9 +368,7 @@ def _check_arena(config: FightConfig, source: str) -> None:
                 block,
                 f"must lie inside the {arena.width:g}x{arena.height:g} arena",
             )
-    stage_left = min(block.x for block in arena.blocks)
-    stage_right = max(block.x + block.width for block in arena.blocks)
-    if stage_left <= 0 and stage_right >= arena.width:
+    if arena.stage_left <= 0 and arena.stage_right >= arena.width:
         _fail(
             source,
             "arena.blocks",

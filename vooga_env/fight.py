@@ -103,8 +103,7 @@ class Fight:
         for fighter in self.fighters:
             group.add_sprite_array([fighter, fighter.hitbox])
         self.world = World(self.engine, group, kinds)
-        self.stage_left = min(block.left for block in self.blocks)
-        self.stage_right = max(block.right for block in self.blocks)
+        self.stage_left, self.stage_right = arena.stage_left, arena.stage_right
         self.frame = 0
         self.steps = 0
         self.spawns = [0.0, 0.0]

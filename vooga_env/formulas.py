@@ -47,6 +47,11 @@ def knockback(
     return power
 
 
+def time_out(terminated: bool, steps: int, max_cycles: int) -> bool:
+    """The time limit: a fight that did not end is truncated once it has run `max_cycles` steps."""
+    return not terminated and steps >= max_cycles
+
+
 def edge_room(centre: float, stage_left: float, stage_right: float) -> float:
     """A fighter's room (px) from its centre to the nearer stage edge."""
     return py_min(centre - stage_left, stage_right - centre)

@@ -8,18 +8,13 @@ import pytest
 
 import vooga_env
 from tests.vector.reference import INFO_KEYS, SCENARIOS, WINNERS, load, summary
+from vooga_env.outcome import Outcome
 from vooga_env.policies import make_policy
 from vooga_env.vector import VectorFight
 
 STEPS = 2000  # the whole reference games
-# the references' winner codes (reference.WINNERS) as the batched engine's: -2 while the fight
-# goes on, -1 for a draw
-WINNER_CODES = {
-    WINNERS[None]: -2,
-    WINNERS["fighter_0"]: 0,
-    WINNERS["fighter_1"]: 1,
-    WINNERS["draw"]: -1,
-}
+# the references' winner codes (reference.WINNERS) as the batched engine's Outcome codes
+WINNER_CODES = {code: Outcome.from_info(winner) for winner, code in WINNERS.items()}
 
 
 def same(got, expected, what: str) -> None:
@@ -147,11 +142,11 @@ def side_by_side(
                 counts["truncations"] += trunc["fighter_0"]
                 same(finals.pop(i), stacked, f"{where}: final observation")
                 winner = infos["fighter_0"]["winner"]
-                assert info["winner"][i] == {"fighter_0": 0, "fighter_1": 1, "draw": -1}[winner]
+                assert info["winner"][i] == Outcome.from_info(winner)
                 obs, _ = env.reset()
                 stacked = np.stack([obs[a] for a in agents])
             else:
-                assert info["winner"][i] == -2
+                assert info["winner"][i] == Outcome.GOING_ON
             same(batch_obs[i], stacked, f"{where}: observations")
             fighters = env.fight.fighters
             expected = np.array([[f.x, f.y, f.vx, f.vy] for f in fighters])

@@ -24,6 +24,7 @@ SOURCES = (
     HERE / "state.py",
     HERE.parent / "observations.py",
     HERE.parent / "actions.py",
+    HERE.parent / "outcome.py",
     HERE.parent / "physics" / "formulas.py",
     HERE.parent / "formulas.py",
 )

@@ -22,6 +22,7 @@ import numpy as np
 
 from vooga_env.config import FightConfig, load_config
 from vooga_env.observations import OBSERVATION_SIZE
+from vooga_env.outcome import Outcome
 from vooga_env.vector.params import FightParams, check_supported
 from vooga_env.vector.state import FightState, StepEvents
 
@@ -126,9 +127,9 @@ class VectorFight:
         `actions`: (N, 2) ints in 0..9, fighter_0's then fighter_1's. Returns observations
         (N, 2, 41) float32 (of the new episode where one ended), rewards (N, 2) float64,
         terminated (N,), truncated (N,), and `info`: `StepEvents` fields (each (2, N)),
-        `health` and `stocks` (2, N) before any reset, `winner` (N,) (0, 1, -1 draw; -2 while the
-        fight goes on), `done_index` (the ended fights' indices, ascending) and
-        `final_observation` (len(done_index), 2, 41): their last observations.
+        `health` and `stocks` (2, N) before any reset, `winner` (N,) (`Outcome` codes: 0, 1,
+        DRAW -1, GOING_ON -2 while the fight goes on), `done_index` (the ended fights' indices,
+        ascending) and `final_observation` (len(done_index), 2, 41): their last observations.
         """
         events, rewards, terminated, truncated, winner, observations = self._compiled_step(actions)
         s = self.state
@@ -143,7 +144,7 @@ class VectorFight:
             "stocks": s.stocks.copy(),
             "winner": winner,
         }
-        index = np.flatnonzero(winner != -2)
+        index = np.flatnonzero(winner != Outcome.GOING_ON)
         info["done_index"] = index
         info["final_observation"] = observations[index]
         if index.size:

@@ -11,62 +11,88 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from vooga_env.vector.kernel_observe import _observe, observe
-from vooga_env.vector.kernel_parts import Events, Params, State, Streams, _stack, jit
+from vooga_env.vector.kernel_observe import _observe
+from vooga_env.vector.kernel_parts import (
+    ATTACK_FLOATS,
+    ATTACK_INTS,
+    FLOAT_PARAMS,
+    INT_PARAMS,
+    Streams,
+    events_record,
+    jit,
+    params_record,
+    state_record,
+)
 from vooga_env.vector.kernel_step import _reset, _step
 from vooga_env.vector.params import FightParams
 from vooga_env.vector.state import FightState, StepEvents
 
 
-def kernel_params(params: FightParams) -> Params:
-    """One config's numbers as the kernel's `Params` record."""
+def kernel_arrays(params: FightParams) -> tuple[np.ndarray, ...]:
+    """One config's numbers as the kernel's parameter arrays (see kernel_parts.params_record)."""
     c, f, r = params.config, params.config.fighter, params.config.rewards
-    return Params(
+    values = dict(
         width=params.width, height=params.height, gravity=params.gravity,
         factor=params.background_factor, speed_factor=params.speed_factor,
         out_distance=params.out_bound_distance, dt=params.frame_time, friction=params.friction,
         stage_left=params.stage_left, stage_right=params.stage_right,
-        blocks=np.stack([params.block_x, params.block_y, params.block_w, params.block_h]),
-        spawns=np.array(params.spawns), spawn_jitter=params.spawn_jitter,
+        spawn_jitter=params.spawn_jitter,
         f_width=f.width, f_height=f.height, crouch=f.crouch_height, mass=f.mass, speed=f.speed,
         health=f.health, jump=f.jump_speed, fast_fall=f.fast_fall_speed,
         head_slide=f.head_slide, block_damage=f.block_damage,
-        block_knockback=f.block_knockback, air_jumps=f.air_jumps,
+        block_knockback=f.block_knockback,
+        r_damage=r.damage, r_ring_out=r.ring_out, r_ko=r.ko, r_time=r.time_penalty, edge=r.edge,
+        air_jumps=f.air_jumps, frame_skip=c.frame_skip, max_cycles=c.max_cycles,
+        stocks=c.stocks,
         damage=params.attack_damage, knockback=params.attack_knockback,
         growth=params.attack_growth, cos=params.attack_cos, sin=params.attack_sin,
         hitbox_w=params.hitbox_w, hitbox_h=params.hitbox_h,
         hitbox_offset_y=params.hitbox_offset_y, startup=params.attack_startup,
         active=params.attack_active, total=params.attack_total, hitstun=params.attack_hitstun,
         blocked_hitstun=params.attack_blocked_hitstun,
-        frame_skip=c.frame_skip, max_cycles=c.max_cycles, stocks=c.stocks,
-        r_damage=r.damage, r_ring_out=r.ring_out, r_ko=r.ko, r_time=r.time_penalty, edge=r.edge,
     )  # fmt: skip
+    return (
+        np.array([values[name] for name in FLOAT_PARAMS], dtype=np.float64),
+        np.array([values[name] for name in INT_PARAMS], dtype=np.int64),
+        np.stack([params.block_x, params.block_y, params.block_w, params.block_h]),
+        np.array(params.spawns, dtype=np.float64),
+        np.stack([values[name] for name in ATTACK_FLOATS]).astype(np.float64),
+        np.stack([values[name] for name in ATTACK_INTS]).astype(np.int64),
+    )
 
 
-def state_record(s: FightState) -> State:
-    return State(s.floats, s.ints, s.flags, s.counters, s.values)
+def state_blocks(s: FightState) -> tuple[np.ndarray, ...]:
+    """A FightState's blocks in the order of kernel_parts.State."""
+    return s.floats, s.ints, s.flags, s.counters, s.values
 
 
-def events_record(events: StepEvents) -> Events:
-    return Events(events.damage, events.hits, events.outs, events.over)
+def event_blocks(events: StepEvents) -> tuple[np.ndarray, ...]:
+    """A StepEvents' blocks in the order of kernel_parts.Events."""
+    return events.damage, events.hits, events.outs, events.over
 
 
 class Kernel:
-    """Holds one config's `Params` record and steps a `FightState` with the compiled loop."""
+    """Holds one config's parameter arrays and steps a `FightState` with the compiled loops.
+
+    The compiled entry points take arrays (numba unboxes arrays fast, a record slowly) and build
+    the records the stages take: `Params`, `State`, `Events` (kernel_parts).
+    """
 
     def __init__(self, params: FightParams) -> None:
         self.params = params
-        self.record = kernel_params(params)
+        self.arrays = kernel_arrays(params)
 
     def observe(self, s: FightState, out: np.ndarray, index: np.ndarray) -> None:
         """Write the observations of the fights `index` into out[index] ((N, 2, 41) float32)."""
-        _observe(self.record, state_record(s), np.asarray(index, dtype=np.int64), out)
+        index = np.asarray(index, dtype=np.int64)
+        _observe_arrays(*self.arrays, *state_blocks(s), index, out)
 
     def reset(self, s: FightState, index: np.ndarray) -> None:
         """`Fight.reset` of the fights `index` (spawn jitter from each fight's PCG64 stream)."""
         r = s.rng
-        streams = Streams(r.state_hi, r.state_lo, r.inc_hi, r.inc_lo)
-        _reset(self.record, state_record(s), streams, np.asarray(index, dtype=np.int64))
+        index = np.asarray(index, dtype=np.int64)
+        _reset_arrays(*self.arrays, *state_blocks(s), r.state_hi, r.state_lo, r.inc_hi,
+                      r.inc_lo, index)  # fmt: skip
 
     def step(
         self,
@@ -83,8 +109,8 @@ class Kernel:
         draw, -2 while the fight goes on; `events.over` is `terminated`.
         """
         actions = np.ascontiguousarray(actions, dtype=np.int64)
-        _step(self.record, state_record(s), events_record(events), actions, rewards, truncated,
-              winner, 0, s.size)  # fmt: skip
+        _step_arrays(*self.arrays, *state_blocks(s), *event_blocks(events), actions, rewards,
+                     truncated, winner, 0, s.size)  # fmt: skip
 
     def step_observe(
         self,
@@ -103,7 +129,7 @@ class Kernel:
         threads at once when there are two or more (each fight is independent, so the results do
         not depend on the cut).
         """
-        arguments = (self.record, state_record(s), events_record(events), actions, rewards,
+        arguments = (*self.arrays, *state_blocks(s), *event_blocks(events), actions, rewards,
                      truncated, winner, out)  # fmt: skip
         if bounds.shape[0] == 2:
             _step_observe(bounds[0], bounds[1], *arguments)
@@ -111,21 +137,54 @@ class Kernel:
             _step_observe_chunks(bounds, *arguments)
 
 
+# The entry points: parameter arrays (fp, ip, blocks, spawns, af, ai: params_record), state
+# blocks (fl, it, fg, ct, values: State), event blocks (damage, hits, outs, over: Events). Each
+# builds the records and inlines the loop that takes them, so that the compiler sees their
+# arrays unmanaged (a record handed to another compiled function would cost a reference count
+# call for each array taken out of it).
+
+
 @jit
-def _step_observe(start, stop, p, s, e, actions, rewards, truncated, winner, out):
-    """Zero the events, step and observe the fights start..stop-1."""
-    e.damage[:, :, start:stop] = 0.0
-    e.hits[:, :, start:stop] = 0
-    e.outs[:, :, start:stop] = False
-    e.over[start:stop] = False
+def _observe_arrays(fp, ip, blocks, spawns, af, ai, fl, it, fg, ct, values, index, out):
+    p = params_record(fp, ip, blocks, spawns, af, ai)
+    _observe(p, state_record(fl, it, fg, ct, values), index, out)
+
+
+@jit
+def _reset_arrays(fp, ip, blocks, spawns, af, ai, fl, it, fg, ct, values, state_hi, state_lo,
+                  inc_hi, inc_lo, index):  # fmt: skip
+    p = params_record(fp, ip, blocks, spawns, af, ai)
+    rng = Streams(state_hi, state_lo, inc_hi, inc_lo)
+    _reset(p, state_record(fl, it, fg, ct, values), rng, index)
+
+
+@jit
+def _step_arrays(fp, ip, blocks, spawns, af, ai, fl, it, fg, ct, values, damage, hits, outs,
+                 over, actions, rewards, truncated, winner, start, stop):  # fmt: skip
+    p = params_record(fp, ip, blocks, spawns, af, ai)
+    s, e = state_record(fl, it, fg, ct, values), events_record(damage, hits, outs, over)
     _step(p, s, e, actions, rewards, truncated, winner, start, stop)
-    position = numba.carray(_stack(4, np.float64), (2, 2))
-    for i in range(start, stop):
-        observe(p, s, out, i, position)
+
+
+@jit
+def _step_observe(start, stop, fp, ip, blocks, spawns, af, ai, fl, it, fg, ct, values, damage,
+                  hits, outs, over, actions, rewards, truncated, winner, out):  # fmt: skip
+    """Zero the events, step and observe the fights start..stop-1."""
+    damage[:, :, start:stop] = 0.0
+    hits[:, :, start:stop] = 0
+    outs[:, :, start:stop] = False
+    over[start:stop] = False
+    _step_arrays(fp, ip, blocks, spawns, af, ai, fl, it, fg, ct, values, damage, hits, outs,
+                 over, actions, rewards, truncated, winner, start, stop)  # fmt: skip
+    _observe_arrays(fp, ip, blocks, spawns, af, ai, fl, it, fg, ct, values,
+                    np.arange(start, stop), out)  # fmt: skip
 
 
 @numba.njit(cache=True, nogil=True, parallel=True)
-def _step_observe_chunks(bounds, p, s, e, actions, rewards, truncated, winner, out):
+def _step_observe_chunks(bounds, fp, ip, blocks, spawns, af, ai, fl, it, fg, ct, values, damage,
+                         hits, outs, over, actions, rewards, truncated, winner, out):  # fmt: skip
     """`_step_observe` of each chunk bounds[c]..bounds[c + 1] - 1, the chunks on threads."""
     for c in numba.prange(bounds.shape[0] - 1):
-        _step_observe(bounds[c], bounds[c + 1], p, s, e, actions, rewards, truncated, winner, out)
+        _step_observe(bounds[c], bounds[c + 1], fp, ip, blocks, spawns, af, ai, fl, it, fg, ct,
+                      values, damage, hits, outs, over, actions, rewards, truncated, winner,
+                      out)  # fmt: skip

@@ -12,7 +12,7 @@ import numba
 import numpy as np
 
 from vooga_env.observations import HIGH, HITSTUN_SCALE, LOW, VELOCITY_SCALE
-from vooga_env.vector.kernel_parts import F, _stack, inline, jit
+from vooga_env.vector.kernel_parts import F, _stack, _unmanaged, inline
 from vooga_env.vector.layout import (
     KICK,
     OBS_BLOCKING,
@@ -156,9 +156,10 @@ def observe(p, s, out, i, position):
         out[i, me, OBS_TIME_LEFT] = remaining
 
 
-@jit
+@inline
 def _observe(p, s, index, out):
-    """`observe` of the fights `index`, into out[i] ((N, 2, 41) float32)."""
+    """`observe` of the fights `index`, into out[i] ((N, 2, 41) float32); records: kernel_parts."""
+    out = _unmanaged(out)
     position = numba.carray(_stack(4, np.float64), (2, 2))
     for i in index:
         observe(p, s, out, i, position)

@@ -55,23 +55,28 @@ def compiled(*modules: pytypes.ModuleType) -> pytypes.ModuleType:
 
 F = compiled(physics_formulas, fight_formulas)
 
-Params = namedtuple(
-    "Params",
-    [
-        # arena and engine (px, ms, px/ms)
-        "width", "height", "gravity", "factor", "speed_factor", "out_distance", "dt", "friction",
-        "stage_left", "stage_right", "blocks", "spawns", "spawn_jitter",
-        # the fighter
-        "f_width", "f_height", "crouch", "mass", "speed", "health", "jump", "fast_fall",
-        "head_slide", "block_damage", "block_knockback", "air_jumps",
-        # the attacks, (MOVE_CODES,) arrays indexed by move code
-        "damage", "knockback", "growth", "cos", "sin", "hitbox_w", "hitbox_h", "hitbox_offset_y",
-        "startup", "active", "total", "hitstun", "blocked_hitstun",
-        # the fight and its reward
-        "frame_skip", "max_cycles", "stocks",
-        "r_damage", "r_ring_out", "r_ko", "r_time", "edge",
-    ],
+# The Params record's fields: the floats, the ints, the stage, then the attack tables ((MOVE_CODES,)
+# each, indexed by move code). The compiled entry points take them as five arrays in this order
+# (numba unboxes arrays fast, a namedtuple slowly) and build the record (`params_record`).
+FLOAT_PARAMS = (
+    # arena and engine (px, ms, px/ms)
+    "width", "height", "gravity", "factor", "speed_factor", "out_distance", "dt", "friction",
+    "stage_left", "stage_right", "spawn_jitter",
+    # the fighter
+    "f_width", "f_height", "crouch", "mass", "speed", "health", "jump", "fast_fall",
+    "head_slide", "block_damage", "block_knockback",
+    # the reward
+    "r_damage", "r_ring_out", "r_ko", "r_time", "edge",
 )  # fmt: skip
+INT_PARAMS = ("air_jumps", "frame_skip", "max_cycles", "stocks")
+STAGE_PARAMS = ("blocks", "spawns")  # (4, B): x, y, width, height; (2,) spawn x
+ATTACK_FLOATS = (
+    "damage", "knockback", "growth", "cos", "sin", "hitbox_w", "hitbox_h", "hitbox_offset_y",
+)  # fmt: skip
+ATTACK_INTS = ("startup", "active", "total", "hitstun", "blocked_hitstun")
+Params = namedtuple(
+    "Params", FLOAT_PARAMS + INT_PARAMS + STAGE_PARAMS + ATTACK_FLOATS + ATTACK_INTS
+)
 State = namedtuple("State", ["fl", "it", "fg", "ct", "values"])  # FightState's blocks
 Events = namedtuple("Events", ["damage", "hits", "outs", "over"])  # StepEvents' blocks
 Streams = namedtuple("Streams", ["state_hi", "state_lo", "inc_hi", "inc_lo"])  # PCG64Streams'
@@ -103,15 +108,72 @@ def _stack(typingctx, size, dtype):
     return sig, codegen
 
 
+@intrinsic
+def _unmanaged(typingctx, array):
+    """The same array view without its reference count (meminfo NULL), for the records: numba
+    counts a reference, atomically, each time an array is taken out of a tuple, and the stages
+    take theirs in the hot loop. Valid while the array it views is alive (the call's arguments)."""
+    if not isinstance(array, types.Array):
+        return None
+
+    def codegen(context, builder, signature, args):
+        view = cgutils.create_struct_proxy(array)(context, builder, value=args[0])
+        view.meminfo = cgutils.get_null_value(view.meminfo.type)
+        view.parent = cgutils.get_null_value(view.parent.type)
+        return view._getvalue()
+
+    return array(array), codegen
+
+
+@inline
+def params_record(fp, ip, blocks, spawns, af, ai):
+    """The Params record of the arrays (FLOAT_PARAMS, INT_PARAMS, blocks, spawns, ATTACK_FLOATS
+    rows, ATTACK_INTS rows), its arrays unmanaged (see _unmanaged)."""
+    u = _unmanaged
+    return Params(
+        fp[0], fp[1], fp[2], fp[3], fp[4], fp[5], fp[6], fp[7], fp[8], fp[9], fp[10],
+        fp[11], fp[12], fp[13], fp[14], fp[15], fp[16], fp[17], fp[18], fp[19], fp[20], fp[21],
+        fp[22], fp[23], fp[24], fp[25], fp[26],
+        ip[0], ip[1], ip[2], ip[3],
+        u(blocks), u(spawns),
+        u(af[0]), u(af[1]), u(af[2]), u(af[3]), u(af[4]), u(af[5]), u(af[6]), u(af[7]),
+        u(ai[0]), u(ai[1]), u(ai[2]), u(ai[3]), u(ai[4]),
+    )  # fmt: skip
+
+
+# params_record reads each field by position: a field added to the lists must be added there
+assert [len(FLOAT_PARAMS), len(INT_PARAMS), len(ATTACK_FLOATS), len(ATTACK_INTS)] == [27, 4, 8, 5]
+
+
+@inline
+def state_record(fl, it, fg, ct, values):
+    """A State of the FightState blocks, unmanaged (see _unmanaged)."""
+    u = _unmanaged
+    return State(u(fl), u(it), u(fg), u(ct), u(values))
+
+
+@inline
+def events_record(damage, hits, outs, over):
+    """An Events of the StepEvents blocks, unmanaged (see _unmanaged)."""
+    u = _unmanaged
+    return Events(u(damage), u(hits), u(outs), u(over))
+
+
+TERMS_SIZE = 2 * 2 * 2 * MAX_TERMS  # fighter, kind, axis, term
+PARTIALS_SIZE = MAX_TERMS + 1
+
+
 @inline
 def scratch():
     """A frame's working arrays, on the stack (see _stack); each frame clears what it needs."""
     hit_toi = numba.carray(_stack(2, np.float64), 2)
     hit_toi[0] = hit_toi[1] = 0.0
+    terms = numba.carray(_stack(TERMS_SIZE, np.float64), (2, 2, 2, MAX_TERMS))
+    terms[:] = 0.0
     return Scratch(
-        np.zeros((2, 2, 2, MAX_TERMS)),  # fighter, kind, axis, term
+        terms,
         numba.carray(_stack(8, np.int64), (2, 2, 2)),
-        np.empty(MAX_TERMS + 1),
+        numba.carray(_stack(PARTIALS_SIZE, np.float64), PARTIALS_SIZE),
         numba.carray(_stack(8, np.float64), (2, 2, 2)),
         numba.carray(_stack(8, np.float64), (2, 2, 2)),
         numba.carray(_stack(4, np.bool_), (2, 2)),  # fighter, axis: slowed by friction

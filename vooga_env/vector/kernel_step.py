@@ -10,12 +10,12 @@ from __future__ import annotations
 import numpy as np
 
 from vooga_env.vector import stages
-from vooga_env.vector.kernel_parts import _next_double, inline, jit, scratch
+from vooga_env.vector.kernel_parts import _next_double, inline, scratch
 from vooga_env.vector.layout import S_FRAME, S_POTENTIAL, S_SPAWN_TOP, S_SPAWN_X, S_STEPS, S_STOCKS
 from vooga_env.vector.stages import F
 
 
-@jit
+@inline
 def _step(p, s, e, actions, rewards, truncated, winner, start, stop):
     """One env step of the fights start..stop-1 (frames until `frame_skip` or the fight's end),
     in place; fills `e`, rewards (N, 2), truncated (N,) and winner (N,: stages.outcome)."""
@@ -49,7 +49,7 @@ def _frame_of(p, s, e, x, actions, i):
     return stages.after_frame(p, s, e, x, i, pair_found, pair_axis, pair_normal)
 
 
-@jit
+@inline
 def _reset(p, s, rng, index):
     """`Fight.reset` of the fights `index`: jittered spawns (each fight's PCG64 stream), the
     block under each, full stocks, both respawned, the reward's edge potential."""

@@ -99,8 +99,8 @@ class FightParams:
             block_h=np.array([b.height for b in blocks]),
             spawns=(arena.spawns[0], arena.spawns[1]),
             spawn_jitter=arena.spawn_jitter,
-            stage_left=min(b.x for b in blocks),
-            stage_right=max(b.x + b.width for b in blocks),
+            stage_left=arena.stage_left,
+            stage_right=arena.stage_right,
             gravity=physics.gravity,
             background_factor=physics.background_factor,
             speed_factor=physics.speed_factor,
@@ -127,16 +127,3 @@ class FightParams:
     @property
     def blocks(self) -> int:
         return len(self.block_x)
-
-    def spawn_top(self, x: np.ndarray) -> np.ndarray:
-        """The top of the highest block under a fighter whose left edge is at `x` (spawn_block).
-
-        Ties go to the first block listed, as `min` does; the config guarantees a block under
-        every spawn, jitter included.
-        """
-        width = self.config.fighter.width
-        top = np.full(x.shape, np.inf)
-        for bx, by, bw in zip(self.block_x.tolist(), self.block_y.tolist(), self.block_w.tolist()):
-            under = (bx < x + width) & (x < bx + bw) & (by < top)
-            top = np.where(under, by, top)
-        return top

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from vooga_env.outcome import Outcome
 from vooga_env.vector.kernel_parts import F, _fsum, add_term, inline
 from vooga_env.vector.layout import (
     ATTACK_MOVE,
@@ -56,7 +57,7 @@ from vooga_env.vector.layout import (
     WALK_DIRECTION,
 )
 
-GOING_ON, DRAW = -2, -1  # the kernel's winner codes besides 0 and 1 (outcome.Outcome.code)
+GOING_ON, DRAW = int(Outcome.GOING_ON), int(Outcome.DRAW)  # the codes besides 0 and 1
 
 
 @inline
@@ -237,10 +238,11 @@ def hitbox_contact(p, s, x, i, a):
 @inline
 def reaction_rebound(p, s, x, i, f, b, axis, normal, toi):
     """ReactionRebound (no bouncy edge) of fighter f on block b; `normal` seen from the fighter."""
+    bx, by, bw, bh = p.blocks[0, b], p.blocks[1, b], p.blocks[2, b], p.blocks[3, b]
     if axis == 1:
-        face, own, size = p.blocks[1, b] + 0.0, s.fl[S_HEIGHT, f, i], p.blocks[3, b]
+        face, own, size = by + 0.0, s.fl[S_HEIGHT, f, i], bh
     else:
-        face, own, size = p.blocks[0, b] + 0.0, p.f_width, p.blocks[2, b]
+        face, own, size = bx + 0.0, p.f_width, bw
     surface = F.rebound_surface(face, size, own, normal)
     if normal > 0.0:
         x.high[f, 0, axis] = F.py_min(x.high[f, 0, axis], surface)
@@ -460,7 +462,7 @@ def reward(p, s, e, i, rewards):
 def outcome(p, s, e, i):
     """(truncated, winner) after the step: 0 or 1 (more stocks, then more health), DRAW, or
     GOING_ON while the fight neither ended nor ran out of steps."""
-    truncated = not e.over[i] and s.ct[S_STEPS, i] >= p.max_cycles
+    truncated = F.time_out(e.over[i], s.ct[S_STEPS, i], p.max_cycles)
     if not (e.over[i] or truncated):
         return truncated, GOING_ON
     it, fl = s.it, s.fl
