@@ -55,9 +55,9 @@ def compiled(*modules: pytypes.ModuleType) -> pytypes.ModuleType:
 
 F = compiled(physics_formulas, fight_formulas)
 
-# The Params record's fields: the floats, the ints, the stage, then the attack tables ((MOVE_CODES,)
-# each, indexed by move code). The compiled entry points take them as five arrays in this order
-# (numba unboxes arrays fast, a namedtuple slowly) and build the record (`params_record`).
+# The Params record's fields: the floats, the ints, the stage, then the attack tables (one value
+# per move code each). The compiled entry points take them as six arrays in this order (numba
+# unboxes arrays fast, a namedtuple slowly) and build the record (`params_record`).
 FLOAT_PARAMS = (
     # arena and engine (px, ms, px/ms)
     "width", "height", "gravity", "factor", "speed_factor", "out_distance", "dt", "friction",

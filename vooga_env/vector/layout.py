@@ -24,11 +24,9 @@ from vooga_env.vector.state import (
 MOVES = tuple(dict.fromkeys(ATTACKS.values()))  # ("punch", "kick")
 NO_MOVE = 0
 PUNCH, KICK = (MOVES.index(name) + 1 for name in ("punch", "kick"))
-MOVE_CODES = 1 + len(MOVES)
 
 # actions the kernel tests one by one
 DOWN, BLOCK = int(Action.DOWN), int(Action.BLOCK)
-ACTIONS = len(Action)
 # per action code: is it a jump, its move code (NO_MOVE if none), its walk direction (0: none)
 IS_JUMP = np.array([a in JUMPS for a in Action])
 ATTACK_MOVE = np.array([MOVES.index(ATTACKS[a]) + 1 if a in ATTACKS else NO_MOVE for a in Action])

@@ -123,7 +123,3 @@ class FightParams:
             hitbox_h=table("hitbox_height"),
             hitbox_offset_y=table("offset_y"),
         )
-
-    @property
-    def blocks(self) -> int:
-        return len(self.block_x)
