@@ -5,7 +5,7 @@
    the single-agent Gymnasium env, each against `gymnasium.make("CartPole-v1").step`.
 2. The batched engine (`vooga_env.vector.VectorFight`) at N fights, env-steps/s (one env step of
    one fight counts once), against `gymnasium.make_vec("CartPole-v1", num_envs=N,
-   vectorization_mode="vector_entry_point")`, for each backend.
+   vectorization_mode="vector_entry_point")`.
 3. PPO `learn()` steps/s through `vooga_env.vector.sb3.FightVecEnv` (self-play, 2 slots per fight;
    and one learner against a scripted fighter) against PPO on CartPole (SB3's DummyVecEnv) with
    the same n_envs, n_steps and network (torch on one thread for both).

@@ -19,6 +19,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from vooga_env import formulas
+
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover - Python 3.10
@@ -70,6 +72,16 @@ class ArenaConfig:
     blocks: tuple[Block, ...] = (Block(120.0, 360.0, 560.0, 40.0),)
     spawns: tuple[float, ...] = (240.0, 520.0)
     spawn_jitter: float = 0.0
+
+    @property
+    def stage_left(self) -> float:
+        """The stage's left edge (px): the leftmost block's; the reward's edges and observations."""
+        return min(block.x for block in self.blocks)
+
+    @property
+    def stage_right(self) -> float:
+        """The stage's right edge (px): the rightmost block end."""
+        return max(block.x + block.width for block in self.blocks)
 
 
 @dataclass(frozen=True)
@@ -384,9 +396,7 @@ def _check_arena(config: FightConfig, source: str) -> None:
                 block,
                 f"must lie inside the {arena.width:g}x{arena.height:g} arena",
             )
-    stage_left = min(block.x for block in arena.blocks)
-    stage_right = max(block.x + block.width for block in arena.blocks)
-    if stage_left <= 0 and stage_right >= arena.width:
+    if arena.stage_left <= 0 and arena.stage_right >= arena.width:
         _fail(
             source,
             "arena.blocks",
@@ -425,5 +435,5 @@ def _check_spawn(config: FightConfig, source: str, key: str, x: float) -> None:
 
 def spawn_block(arena: ArenaConfig, x: float, width: float) -> Block | None:
     """The highest block under a fighter whose left edge is at `x`, or None."""
-    under = [block for block in arena.blocks if block.x < x + width and x < block.x + block.width]
+    under = [block for block in arena.blocks if formulas.under(block.x, block.width, x, width)]
     return min(under, key=lambda block: block.y, default=None)

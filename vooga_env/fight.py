@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from vooga_env import formulas
 from vooga_env.actions import ATTACKS, JUMPS, WALK, Action
 from vooga_env.config import AttackConfig, FightConfig, spawn_block
 from vooga_env.hits import Fighter, Hit, ReactionHit, hit_kind
@@ -75,8 +76,8 @@ def hitbox_box(
     fighter: Fighter, attack: AttackConfig, facing: float
 ) -> tuple[float, float, float, float]:
     """(x, y, width, height) of an attack's hitbox: out of the front edge, placed from the feet."""
-    x = fighter.right if facing > 0 else fighter.left - attack.hitbox_width
-    y = fighter.bottom - fighter.config.height + attack.offset_y
+    x = formulas.hitbox_x(fighter.left, fighter.right, facing, attack.hitbox_width)
+    y = formulas.hitbox_y(fighter.bottom, fighter.config.height, attack.offset_y)
     return x, y, attack.hitbox_width, attack.hitbox_height
 
 
@@ -114,8 +115,7 @@ class Fight:
         for fighter in self.fighters:
             group.add_sprite_array([fighter, fighter.hitbox])
         self.world = World(self.engine, group, kinds)
-        self.stage_left = min(block.left for block in self.blocks)
-        self.stage_right = max(block.right for block in self.blocks)
+        self.stage_left, self.stage_right = arena.stage_left, arena.stage_right
         self.frame = 0
         self.steps = 0
         self.spawns = [0.0, 0.0]
@@ -314,7 +314,7 @@ class Fight:
         reach = []
         for attack in (attacker.config.punch, attacker.config.kick):
             x, y, width, height = hitbox_box(attacker, attack, facing)
-            reach.append(x < right and left < x + width and y < bottom and top < y + height)
+            reach.append(formulas.reaches(left, top, right, bottom, x, y, width, height))
         return reach[0], reach[1]
 
     def _advance(self, fighter: Fighter) -> None:

@@ -24,7 +24,7 @@ from gymnasium.vector.utils import batch_space
 from vooga_env.actions import Action, batch_actions, check_seat
 from vooga_env.config import FightConfig
 from vooga_env.observations import HIGH, LOW, OBSERVATION_SIZE
-from vooga_env.parallel import AGENTS
+from vooga_env.outcome import Outcome
 from vooga_env.render import frames_per_second
 from vooga_env.spectator import Spectator
 from vooga_env.vector.engine import VectorFight
@@ -134,8 +134,7 @@ class FightVectorEnv(gymnasium.vector.VectorEnv):
                 final_obs[fight] = info["final_observation"][row, self.seat]
             winner = np.full(self.num_envs, None, dtype=object)
             for fight in info["done_index"].tolist():
-                code = int(info["winner"][fight])
-                winner[fight] = "draw" if code < 0 else AGENTS[code]
+                winner[fight] = Outcome(int(info["winner"][fight])).info
             final_info = {**infos, "winner": winner}
             final_info.update({f"_{key}": done for key in list(final_info)})
             infos.update(final_obs=final_obs, _final_obs=done, final_info=final_info)

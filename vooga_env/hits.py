@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from vooga_env import formulas
 from vooga_env.config import AttackConfig, FighterConfig
 from vooga_env.physics import (
     CollisionKindCustom,
@@ -108,9 +109,15 @@ class ReactionHit(Reaction):
         hitbox.struck.add(defender)
         blocked = defender.blocking and defender.facing == -attacker.facing
         config = defender.config
-        damage = attack.damage * (config.block_damage if blocked else 1.0)
-        power = attack.knockback + attack.knockback_growth * (defender.damage_taken + damage)
-        power *= config.block_knockback if blocked else 1.0
+        damage = formulas.hit_damage(attack.damage, blocked, config.block_damage)
+        power = formulas.knockback(
+            attack.knockback,
+            attack.knockback_growth,
+            defender.damage_taken,
+            damage,
+            blocked,
+            config.block_knockback,
+        )
         angle = math.radians(attack.angle)
         contact = contact_between(defender, hitbox)
         launch = (attacker.facing * power * math.cos(angle), -power * math.sin(angle))

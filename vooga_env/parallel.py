@@ -15,9 +15,9 @@ from vooga_env.actions import Action, action_index
 from vooga_env.config import FightConfig, load_config
 from vooga_env.fight import Fight
 from vooga_env.observations import HIGH, LOW, OBSERVATION_SIZE
-from vooga_env.render import frames_per_second
+from vooga_env.outcome import INFO_KEYS, Outcome
 from vooga_env.rewards import RewardFn
-from vooga_env.simulation import DRAW, GOING_ON, INFO_KEYS, make_simulation
+from vooga_env.simulation import make_simulation
 
 AGENTS = ("fighter_0", "fighter_1")
 _ACTIONS = len(Action)
@@ -133,9 +133,8 @@ class FightParallelEnv(ParallelEnv):
         first, second = self.possible_agents
         values_0, values_1 = zip(*columns)
         infos = {first: dict(zip(INFO_KEYS, values_0)), second: dict(zip(INFO_KEYS, values_1))}
-        if winner != GOING_ON:
-            winner = "draw" if winner == DRAW else self.possible_agents[winner]
-            infos[first]["winner"] = infos[second]["winner"] = winner
+        if winner != Outcome.GOING_ON:
+            infos[first]["winner"] = infos[second]["winner"] = Outcome(winner).info
             self.agents = []
         result = (
             {first: both[0], second: both[1]},

@@ -6,6 +6,7 @@ from typing import Protocol
 
 from vooga_env.config import RewardConfig
 from vooga_env.fight import Fight, StepEvents
+from vooga_env.formulas import edge_advantage, edge_room
 
 
 class RewardFn(Protocol):
@@ -50,11 +51,9 @@ class HitAndRingOutReward:
     @staticmethod
     def _edge_advantage(fight: Fight) -> float:
         """fighter_0's room to its nearer stage edge minus fighter_1's, over the stage width."""
-        rooms = []
-        for fighter in fight.fighters:
-            centre = fighter.x + fighter.width / 2.0
-            rooms.append(min(centre - fight.stage_left, fight.stage_right - centre))
-        return (rooms[0] - rooms[1]) / (fight.stage_right - fight.stage_left)
+        left, right = fight.stage_left, fight.stage_right
+        rooms = [edge_room(f.x + f.width / 2.0, left, right) for f in fight.fighters]
+        return edge_advantage(rooms[0], rooms[1], left, right)
 
     def __repr__(self) -> str:
         return f"HitAndRingOutReward({self.config!r})"

@@ -10,8 +10,8 @@ Two backends behind one small interface, bit-identical in everything the env ret
 - `"auto"` (the default) picks "compiled" when it can run the env as asked, else "engine".
 
 A step returns `(observations (2, 41) float32, rewards [r0, r1], terminated, truncated, winner,
-info_columns)`: `winner` is 0 or 1, -1 for a draw, -2 while the fight goes on; `info_columns`
-holds one [fighter_0, fighter_1] pair per name in `INFO_KEYS`, as plain Python numbers.
+info_columns)`: `winner` is an `Outcome` code (0 or 1, DRAW, GOING_ON); `info_columns` holds one
+[fighter_0, fighter_1] pair per name in `INFO_KEYS`, as plain Python numbers.
 """
 
 from __future__ import annotations
@@ -23,21 +23,12 @@ import numpy as np
 
 from vooga_env.config import FightConfig
 from vooga_env.fight import Fight
+from vooga_env.formulas import time_out
 from vooga_env.observations import observe_both
+from vooga_env.outcome import Outcome
 from vooga_env.rewards import HitAndRingOutReward, RewardFn
 
 BACKENDS = ("auto", "engine", "compiled")
-INFO_KEYS = (
-    "health",
-    "stocks",
-    "hits_landed",  # hits not blocked, by attacker
-    "hits_blocked",  # blocked hits, by defender
-    "damage_dealt",
-    "damage_taken",
-    "rung_out",
-    "knocked_out",
-)
-GOING_ON, DRAW = -2, -1
 
 StepResult = tuple[np.ndarray, list[float], bool, bool, int, tuple[list, ...]]
 
@@ -88,17 +79,16 @@ class EngineSimulation:
             fight.undo_step()  # a step whose reward failed did not happen
             raise
         terminated = events.over
-        truncated = not terminated and fight.steps >= self._max_cycles
+        truncated = time_out(terminated, fight.steps, self._max_cycles)
         landed, blocked = [0, 0], [0, 0]
         for hit in events.hits:
             if hit.blocked:
                 blocked[hit.defender] += 1
             else:
                 landed[hit.attacker] += 1
-        winner = GOING_ON
+        winner = Outcome.GOING_ON
         if terminated or truncated:
-            leader = fight.winner()
-            winner = DRAW if leader is None else leader
+            winner = Outcome.of_leader(fight.winner())
         one, two = fight.fighters
         columns = (
             [one.health, two.health],
@@ -159,7 +149,7 @@ def make_simulation(
     if render_mode is not None:
         reason = f"render_mode = {render_mode!r}: the viewer draws the engine's fight"
     elif not numba_available():
-        reason = "numba is not installed: pip install 'vooga-env[fast]' (or numba)"
+        reason = "numba is not installed: pip install numba"
     else:
         try:
             check_supported(config, reward_fn)

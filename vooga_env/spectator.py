@@ -13,7 +13,8 @@ from typing import Any
 import numpy as np
 
 from vooga_env.config import FightConfig
-from vooga_env.simulation import GOING_ON, EngineSimulation
+from vooga_env.outcome import Outcome
+from vooga_env.simulation import EngineSimulation
 
 
 class Spectator:
@@ -34,7 +35,7 @@ class Spectator:
     def step(self, first: int, second: int) -> None:
         """Step the copy; a fight that ends starts the next game, as the batch's auto-reset."""
         *_, winner, _ = self.simulation.step(first, second)
-        if winner != GOING_ON:
+        if winner != Outcome.GOING_ON:
             self.reset()
 
     def render(self) -> np.ndarray:

@@ -16,10 +16,13 @@ from pathlib import Path
 import numpy as np
 
 import vooga_env
+import vooga_env.outcome
 from vooga_env.policies import make_policy
 
 DATA = Path(__file__).resolve().parent / "data"
 STEPS = 2000
+# the recorded files' layout: infos in this order, winners in this code (not Outcome's: the
+# data was recorded before it, and is never re-recorded)
 INFO_KEYS = (
     "health",
     "stocks",
@@ -30,6 +33,7 @@ INFO_KEYS = (
     "rung_out",
     "knocked_out",
 )
+assert INFO_KEYS == vooga_env.outcome.INFO_KEYS, "the env's infos no longer match the recordings"
 WINNERS = {None: -1, "fighter_0": 0, "fighter_1": 1, "draw": 2}
 
 

@@ -1,5 +1,5 @@
 """The batched engine against single envs: bit for bit, step by step, through hits, blocks,
-ring-outs, KOs, truncations and auto-resets, on both backends."""
+ring-outs, KOs, truncations and auto-resets."""
 
 from __future__ import annotations
 
@@ -8,25 +8,13 @@ import pytest
 
 import vooga_env
 from tests.vector.reference import INFO_KEYS, SCENARIOS, WINNERS, load, summary
+from vooga_env.outcome import Outcome
 from vooga_env.policies import make_policy
-from vooga_env.vector import VectorFight, numba_available
+from vooga_env.vector import VectorFight
 
-BACKENDS = [
-    "numpy",
-    pytest.param(
-        "numba", marks=pytest.mark.skipif(not numba_available(), reason="numba not installed")
-    ),
-]
-# the numpy backend costs ~2 ms a step whatever N is: short by default, the whole run when slow
-STEPS = {"numpy": 300, "numba": 2000}
-# the references' winner codes (reference.WINNERS) as the batched engine's: -2 while the fight
-# goes on, -1 for a draw
-WINNER_CODES = {
-    WINNERS[None]: -2,
-    WINNERS["fighter_0"]: 0,
-    WINNERS["fighter_1"]: 1,
-    WINNERS["draw"]: -1,
-}
+STEPS = 2000  # the whole reference games
+# the references' winner codes (reference.WINNERS) as the batched engine's Outcome codes
+WINNER_CODES = {code: Outcome.from_info(winner) for winner, code in WINNERS.items()}
 
 
 def same(got, expected, what: str) -> None:
@@ -40,10 +28,10 @@ def state(fights: VectorFight, i: int) -> np.ndarray:
     return np.array([[s.x[f, i], s.y[f, i], s.vx[f, i], s.vy[f, i]] for f in (0, 1)])
 
 
-def replay(backend: str, scenario, steps: int) -> dict[str, int]:
+def replay(scenario, steps: int) -> dict[str, int]:
     """One fight of the batched engine plays a reference game's actions; every step compared."""
     expected = load(scenario)
-    fights = VectorFight(1, config=scenario.config, backend=backend, **dict(scenario.overrides))
+    fights = VectorFight(1, config=scenario.config, **dict(scenario.overrides))
     same(fights.reset(seed=scenario.seed)[0], expected["reset_obs"][0], "first observation")
     resets = iter(range(1, len(expected["reset_steps"])))
     for t in range(steps):
@@ -83,24 +71,16 @@ def replay(backend: str, scenario, steps: int) -> dict[str, int]:
     )
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
-def test_one_batched_fight_replays_every_reference_game(backend):
+def test_one_batched_fight_replays_every_reference_game():
     totals: dict[str, int] = {}
     for scenario in SCENARIOS:
-        for key, count in replay(backend, scenario, STEPS[backend]).items():
+        for key, count in replay(scenario, STEPS).items():
             totals[key] = totals.get(key, 0) + count
     # the games went through every kind of event (summary of the steps that were compared)
     assert all(count > 0 for count in totals.values()), totals
 
 
-@pytest.mark.slow
-def test_numpy_backend_replays_the_whole_reference_games():
-    for scenario in SCENARIOS:
-        replay("numpy", scenario, 2000)
-
-
 def side_by_side(
-    backend: str,
     steps: int,
     fights_in_batch: int = 6,
     seed: int = 40,
@@ -115,9 +95,7 @@ def side_by_side(
         for _ in range(fights_in_batch)
     ]
     observations = [env.reset(seed=seed + i)[0] for i, env in enumerate(singles)]
-    fights = VectorFight(
-        fights_in_batch, config=config, backend=backend, threads=threads, **overrides
-    )
+    fights = VectorFight(fights_in_batch, config=config, threads=threads, **overrides)
     batch_obs = fights.reset(seed=seed)
     names = ["rush", "turtle", "zoner", "edge_guard", "random"]
     policies = [
@@ -164,11 +142,11 @@ def side_by_side(
                 counts["truncations"] += trunc["fighter_0"]
                 same(finals.pop(i), stacked, f"{where}: final observation")
                 winner = infos["fighter_0"]["winner"]
-                assert info["winner"][i] == {"fighter_0": 0, "fighter_1": 1, "draw": -1}[winner]
+                assert info["winner"][i] == Outcome.from_info(winner)
                 obs, _ = env.reset()
                 stacked = np.stack([obs[a] for a in agents])
             else:
-                assert info["winner"][i] == -2
+                assert info["winner"][i] == Outcome.GOING_ON
             same(batch_obs[i], stacked, f"{where}: observations")
             fighters = env.fight.fighters
             expected = np.array([[f.x, f.y, f.vx, f.vy] for f in fighters])
@@ -178,21 +156,13 @@ def side_by_side(
     return counts
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
-def test_a_batch_of_fights_matches_single_envs_step_by_step(backend):
-    counts = side_by_side(backend, STEPS[backend])
+def test_a_batch_of_fights_matches_single_envs_step_by_step():
+    counts = side_by_side(STEPS)
     assert all(count > 0 for count in counts.values()), counts
 
 
-@pytest.mark.skipif(not numba_available(), reason="numba not installed")
 def test_a_batch_stepped_on_three_threads_matches_single_envs():
-    counts = side_by_side("numba", STEPS["numba"], threads=3)
-    assert all(count > 0 for count in counts.values()), counts
-
-
-@pytest.mark.slow
-def test_numpy_batch_matches_single_envs_over_2000_steps():
-    counts = side_by_side("numpy", 2000)
+    counts = side_by_side(STEPS, threads=3)
     assert all(count > 0 for count in counts.values()), counts
 
 
@@ -212,9 +182,8 @@ VARIANTS = {
 }
 
 
-@pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("variant", VARIANTS)
-def test_config_variants_match_single_envs(backend, variant):
+def test_config_variants_match_single_envs(variant):
     config, overrides = VARIANTS[variant]
-    counts = side_by_side(backend, STEPS[backend] // 6, 4, 7, config, **overrides)
+    counts = side_by_side(STEPS // 6, 4, 7, config, **overrides)
     assert counts["hits"] > 0

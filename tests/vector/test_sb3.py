@@ -29,7 +29,7 @@ def one_torch_thread():
 
 
 def test_self_play_has_two_slots_per_fight_and_sb3_conventions():
-    env = FightVecEnv(3, backend="numpy", max_cycles=20)
+    env = FightVecEnv(3, max_cycles=20)
     assert env.num_envs == 6
     assert env.seed(4) == [4, 4, 5, 5, 6, 6]
     observations = env.reset()  # observations only, as SB3 wants
@@ -56,7 +56,7 @@ def test_self_play_has_two_slots_per_fight_and_sb3_conventions():
 
 def test_same_seed_same_rollout_and_the_slots_are_the_batched_engines():
     def rollout():
-        env = FightVecEnv(4, opponent="rush", opponent_seed=1, backend="numpy", max_cycles=30)
+        env = FightVecEnv(4, opponent="rush", opponent_seed=1, max_cycles=30)
         env.seed(9)
         trace = [env.reset()]
         rng = np.random.default_rng(0)
@@ -65,14 +65,14 @@ def test_same_seed_same_rollout_and_the_slots_are_the_batched_engines():
         return np.stack(trace)
 
     assert np.array_equal(rollout(), rollout())
-    env = FightVecEnv(2, opponent="idle", seat=1, backend="numpy")
+    env = FightVecEnv(2, opponent="idle", seat=1)
     env.seed(3)
-    fights = VectorFight(2, backend="numpy")
+    fights = VectorFight(2)
     assert np.array_equal(env.reset(), fights.reset(seed=3)[:, 1])
 
 
 def test_events_in_infos_on_request():
-    env = FightVecEnv(2, opponent="rush", backend="numpy", info_events=True)
+    env = FightVecEnv(2, opponent="rush", info_events=True)
     env.reset()
     _, _, _, infos = env.step(np.zeros(2, dtype=int))
     assert set(infos[0]) >= {"damage_dealt", "hits_landed", "rung_out", "knocked_out"}

@@ -8,6 +8,7 @@ from collections.abc import Iterable
 from vooga_env.physics import validation
 from vooga_env.physics.contact import Contact, find_contact
 from vooga_env.physics.engine import PhysicsEngine
+from vooga_env.physics.formulas import swept_interval
 from vooga_env.physics.groups import SpriteGroupTemplate
 from vooga_env.physics.kinds import CollisionKind
 from vooga_env.physics.sprites import SpriteTemplate
@@ -102,13 +103,14 @@ class Collision:
         for team, members in enumerate(self._group._teams):
             for sprite in members:
                 if sprite.active:
-                    x, move = sprite.x, sprite.increment_x
-                    right = x + sprite.width
+                    low, high = swept_interval(
+                        sprite.x, sprite.x + sprite.width, sprite.increment_x
+                    )
                     boxes.append(
                         (
-                            x + move if move < 0.0 else x,
+                            low,
                             order,
-                            right + move if move > 0.0 else right,
+                            high,
                             team,
                             sprite.mass != math.inf,
                             sprite,

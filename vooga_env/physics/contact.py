@@ -5,14 +5,13 @@ Detection only; what a contact does is up to the reactions (`reactions.py`).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
+from vooga_env.physics import formulas
+from vooga_env.physics.formulas import OVERLAP_EPSILON
 from vooga_env.physics.sprites import SpriteTemplate
 
-# Overlaps thinner than this (px) are float noise, not contact: sprites resting side by side must
-# not catch on each other because a coordinate was rounded.
-OVERLAP_EPSILON = 1e-9
+__all__ = ["OVERLAP_EPSILON", "Contact", "find_contact"]
 
 _EDGES = {(0, 1.0): "right", (0, -1.0): "left", (1, 1.0): "down", (1, -1.0): "up"}
 
@@ -60,45 +59,21 @@ def find_contact(one: SpriteTemplate, two: SpriteTemplate, elapsed_time: float) 
     boxes came to overlap last (the face that was crossed); for boxes that already overlap, the axis
     of least penetration, ties going to the axis of faster relative motion; the normal points
     from `one`'s centre to `two`'s, or along their relative motion if the centres coincide, or
-    from the older sprite to the newer if neither tells.
+    from the older sprite to the newer if neither tells. The test itself is `formulas.contact`.
     """
-    move_x = one.increment_x - two.increment_x
-    move_y = one.increment_y - two.increment_y
-    entry_x, exit_x = _window(one.left, one.right, two.left, two.right, move_x)
-    entry_y, exit_y = _window(one.top, one.bottom, two.top, two.bottom, move_y)
-    entry = max(entry_x, entry_y)
-    leave = min(exit_x, exit_y)
-    if entry >= leave or entry > 1.0 or leave <= 0.0:
+    found, axis, normal, time_of_impact, depth = formulas.contact(
+        one.left,
+        one.right,
+        one.top,
+        one.bottom,
+        two.left,
+        two.right,
+        two.top,
+        two.bottom,
+        one.increment_x - two.increment_x,
+        one.increment_y - two.increment_y,
+        one.serial < two.serial,
+    )
+    if not found:
         return None
-    if entry < 0.0:
-        depth_x = min(one.right, two.right) - max(one.left, two.left)
-        depth_y = min(one.bottom, two.bottom) - max(one.top, two.top)
-        if depth_x != depth_y:
-            axis = 0 if depth_x < depth_y else 1
-        else:
-            axis = 0 if abs(move_x) > abs(move_y) else 1
-        depth = (depth_x, depth_y)[axis]
-        centre_gap = (
-            (two.left + two.right) - (one.left + one.right),
-            (two.top + two.bottom) - (one.top + one.bottom),
-        )[axis]
-        toward = centre_gap if centre_gap != 0.0 else (move_x, move_y)[axis]
-        if toward == 0.0:  # centres coincide, no motion: the older sprite is the one behind
-            toward = 1.0 if one.serial < two.serial else -1.0
-        return Contact(one, two, axis, 1.0 if toward >= 0.0 else -1.0, 0.0, depth, elapsed_time)
-    axis = 0 if entry_x > entry_y else 1
-    normal = 1.0 if (move_x, move_y)[axis] > 0.0 else -1.0
-    return Contact(one, two, axis, normal, max(entry, 0.0) + 0.0, 0.0, elapsed_time)
-
-
-def _window(
-    low_one: float, high_one: float, low_two: float, high_two: float, move: float
-) -> tuple[float, float]:
-    """The frame fractions (entry, exit) during which two intervals overlap, `one` moving `move`."""
-    if move > 0.0:
-        return (low_two - high_one) / move, (high_two - low_one) / move
-    if move < 0.0:
-        return (high_two - low_one) / move, (low_two - high_one) / move
-    if high_one - low_two > OVERLAP_EPSILON and high_two - low_one > OVERLAP_EPSILON:
-        return -math.inf, math.inf
-    return math.inf, -math.inf
+    return Contact(one, two, axis, normal, time_of_impact, depth, elapsed_time)

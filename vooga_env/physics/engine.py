@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 
-from vooga_env.physics import validation
+from vooga_env.physics import formulas, validation
 from vooga_env.physics.motion import MotionAction
 from vooga_env.physics.sprites import SpriteTemplate
 from vooga_env.physics.validation import Checked
@@ -111,7 +111,7 @@ class FightPhysicsEngine(PhysicsEngine):
         sprite.increment_y += dy * self.background_factor
 
     def displacement(self, velocity: float, elapsed_time: float) -> float:
-        return velocity * elapsed_time * self.background_factor
+        return formulas.displacement(velocity, elapsed_time, self.background_factor)
 
     def integrate(self, sprite: SpriteTemplate, elapsed_time: float) -> None:
         """Gravity first (semi-implicit Euler), then the velocity's share of the increment."""

@@ -9,12 +9,12 @@ shifts the sprite by (1 - t) times the change, so it meets the other sprite and 
 
 from __future__ import annotations
 
-import math
 from abc import ABC, abstractmethod
 
 from vooga_env.physics import validation
 from vooga_env.physics.contact import Contact
 from vooga_env.physics.engine import PhysicsEngine
+from vooga_env.physics.formulas import common, elastic, rebound_surface, redirect_shift, shares
 from vooga_env.physics.sprites import PlatformBlock, SpriteTemplate
 
 
@@ -219,9 +219,7 @@ class ReactionRebound(Reaction):
         axis, normal = contact.axis, contact.normal
         block_edge = _BLOCK_EDGES[(axis, normal)]
         block_start = coordinate(block, axis) + increment(block, axis)
-        surface = (
-            block_start - size(sprite, axis) if normal > 0.0 else block_start + size(block, axis)
-        )
+        surface = rebound_surface(block_start, size(block, axis), size(sprite, axis), normal)
         block_velocity = velocity(block, axis)
         if getattr(self, block_edge):
             target = surface - normal * self.distance
@@ -318,40 +316,6 @@ def closing(sprite_one: SpriteTemplate, sprite_two: SpriteTemplate, contact: Con
     return (increment(sprite_one, axis) - increment(sprite_two, axis)) * contact.normal > 0.0
 
 
-def shares(mass_one: float, mass_two: float) -> tuple[float, float]:
-    """How a separation splits between two sprites: inversely to mass, none for an immovable one."""
-    if mass_one == math.inf:
-        return (0.0, 1.0) if mass_two != math.inf else (0.0, 0.0)
-    if mass_two == math.inf:
-        return 1.0, 0.0
-    total = mass_one + mass_two
-    return mass_two / total, mass_one / total
-
-
-def common(mass_one: float, value_one: float, mass_two: float, value_two: float) -> float:
-    """The mass-weighted mean of two values; an immovable sprite's value wins."""
-    if mass_one == math.inf:
-        return value_one
-    if mass_two == math.inf:
-        return value_two
-    return (mass_one * value_one + mass_two * value_two) / (mass_one + mass_two)
-
-
-def elastic(mass_one: float, mass_two: float, one: float, two: float) -> tuple[float, float]:
-    """The seed's 1-D elastic collision for both sprites; an immovable sprite reflects the other."""
-    if mass_one == math.inf and mass_two == math.inf:
-        return one, two
-    if mass_two == math.inf:
-        return 2.0 * two - one, two
-    if mass_one == math.inf:
-        return one, 2.0 * one - two
-    total = mass_one + mass_two
-    return (
-        (mass_one - mass_two) / total * one + 2.0 * mass_two / total * two,
-        (mass_two - mass_one) / total * two + 2.0 * mass_one / total * one,
-    )
-
-
 def redirect(
     sprite: SpriteTemplate, contact: Contact, increment_after: float, velocity_after: float
 ) -> None:
@@ -360,7 +324,7 @@ def redirect(
         return
     axis = contact.axis
     sprite.response.shift(
-        axis, (1.0 - contact.time_of_impact) * (increment_after - increment(sprite, axis))
+        axis, redirect_shift(contact.time_of_impact, increment_after, increment(sprite, axis))
     )
     sprite.response.change_velocity(axis, velocity_after - velocity(sprite, axis))
 

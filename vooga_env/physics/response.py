@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import math
 
+from vooga_env.physics.formulas import friction, within
+
 AXES = (0, 1)  # 0 = x (right), 1 = y (down)
 
 
@@ -76,21 +78,12 @@ class PendingResponse:
         amount, reference, carry = self.friction[axis]
         slide = 0.0
         if amount > 0.0:
-            sliding = new_velocity + reference
-            slowed = -reference + math.copysign(max(abs(sliding) - amount, 0.0), sliding)
+            slowed = friction(new_velocity, amount, reference)
             slide = (slowed - new_velocity) * carry
             new_velocity = slowed
         if shifts or slide != 0.0:
             new_position = math.fsum([position, increment, slide, *shifts])
         else:
             new_position = position + increment + 0.0
-        new_position = _within(new_position, self.position_bounds[axis])
-        return new_position, _within(new_velocity, self.velocity_bounds[axis])
-
-
-def _within(value: float, bounds: list[float]) -> float:
-    """Clamp into [low, high]; contradicting bounds (a sprite squeezed both ways) meet halfway."""
-    low, high = bounds
-    if low > high:
-        return 0.5 * (low + high)
-    return min(max(value, low), high)
+        new_position = within(new_position, *self.position_bounds[axis])
+        return new_position, within(new_velocity, *self.velocity_bounds[axis])

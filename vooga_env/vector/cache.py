@@ -1,7 +1,7 @@
 """Keep numba's on-disk cache of the kernel honest.
 
 numba's `cache=True` notices a change to a compiled function's own file only, not to the helpers
-and constants it takes from other files (`kernel_parts`, `frame`, `state`, ...), which are
+and constants it takes from other files (`kernel_parts`, `layout`, `state`, ...), which are
 compiled into it. So the kernel's cache files are dropped whenever any of those sources changed
 since they were written (a stamp of their hash sits beside the cache). `python -m
 vooga_env.vector.cache` compiles them all ahead of a first step (`make` does it at install).
@@ -20,11 +20,15 @@ SOURCES = (
     HERE / "kernel.py",
     HERE / "kernel_parts.py",
     HERE / "kernel_step.py",
-    HERE / "frame.py",
+    HERE / "kernel_observe.py",
+    HERE / "stages.py",
+    HERE / "layout.py",
     HERE / "state.py",
     HERE.parent / "observations.py",
     HERE.parent / "actions.py",
-    HERE.parent / "physics" / "contact.py",
+    HERE.parent / "outcome.py",
+    HERE.parent / "physics" / "formulas.py",
+    HERE.parent / "formulas.py",
 )
 
 

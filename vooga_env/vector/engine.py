@@ -7,10 +7,10 @@
 Fight i behaves exactly as `parallel_env(config).reset(seed=seed + i)` followed by the same actions,
 `reset()` (no seed) whenever it ends: same positions, velocities, observations, rewards, dones. A
 fight that ends is reset in the same `step`; its last observation is `info["final_observation"]`.
-`backend="numpy"` steps with array operations, `"numba"` with compiled loops (the `fast` extra),
-`"auto"` picks numba when it is installed. The numba backend steps the fights in `threads` chunks
-at once (default one; more is a choice for an otherwise idle machine); the results do not depend
-on it.
+The fights are stepped by the numba kernel (`kernel.py`; numba is a core dependency), in
+`threads` chunks at once (default one; more is a choice for an otherwise idle machine); the
+results do not depend on it. The engine backend of the single env (`parallel_env(backend=
+"engine")`) is the readable reference the kernel is tested against.
 """
 
 from __future__ import annotations
@@ -22,12 +22,12 @@ import numpy as np
 
 from vooga_env.config import FightConfig, load_config
 from vooga_env.observations import OBSERVATION_SIZE
-from vooga_env.vector import frame as numpy_frame
-from vooga_env.vector.observe import edge_advantage, observe, rewards, winners
+from vooga_env.outcome import Outcome
 from vooga_env.vector.params import FightParams, check_supported
 from vooga_env.vector.state import FightState, StepEvents
 
-BACKENDS = ("auto", "numpy", "numba")
+BACKENDS = ("auto", "numba")  # one backend; "auto" kept for the callers that name it
+INSTALL_NUMBA = "VectorFight needs numba (a core dependency of vooga-env): pip install numba"
 
 
 def numba_available() -> bool:
@@ -55,24 +55,20 @@ class VectorFight:
         if num_fights < 1:
             raise ValueError(f"num_fights must be >= 1, got {num_fights}")
         if backend not in BACKENDS:
-            raise ValueError(f"backend must be one of {', '.join(BACKENDS)}, got {backend!r}")
+            raise ValueError(
+                f"backend must be one of {', '.join(BACKENDS)}, got {backend!r} (the numpy "
+                "backend is gone: the numba kernel runs every batch)"
+            )
         self.config = load_config(config, **overrides)
         check_supported(self.config, reward_fn)
-        if backend == "auto":
-            backend = "numba" if numba_available() else "numpy"
-        if backend == "numba":
-            if not numba_available():
-                raise ImportError(
-                    "backend='numba' needs numba: pip install 'vooga-env[fast]' (or numba)"
-                )
-            from vooga_env.vector.cache import load_kernel
+        if not numba_available():
+            raise ImportError(INSTALL_NUMBA)
+        from vooga_env.vector.cache import load_kernel
 
-            self._kernel = load_kernel().Kernel(FightParams.from_config(self.config))
-        else:
-            self._kernel = None
-        self.backend = backend
+        self.backend = "numba"
         self.num_fights = int(num_fights)
         self.params = FightParams.from_config(self.config)
+        self._kernel = load_kernel().Kernel(self.params)
         self.state = FightState(self.num_fights)
         self._all = np.arange(self.num_fights)
         self.threads = self._thread_count(threads)
@@ -81,16 +77,13 @@ class VectorFight:
         self._seeded = False
 
     def _thread_count(self, threads: int) -> int:
-        """Threads for the numba backend's step, one unless asked: a second thread gains
-        1.5-2x on an idle machine but waits on its descheduled worker when another process
-        (a trainer) holds the other core, down to 0.04x of one thread; the numpy backend runs
-        on one."""
+        """Threads for the step, one unless asked: a second thread gains 1.5-2x on an idle
+        machine but waits on its descheduled worker when another process (a trainer) holds the
+        other core, down to 0.04x of one thread."""
         if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)):
             raise TypeError(f"threads must be an int >= 1, got {threads!r}")
         if threads < 1:
             raise ValueError(f"threads must be >= 1, got {threads}")
-        if threads > 1 and self._kernel is None:
-            raise ValueError(f"threads = {threads} needs backend='numba' (numpy runs on one)")
         return int(min(threads, self.num_fights))
 
     @property
@@ -141,17 +134,11 @@ class VectorFight:
         `actions`: (N, 2) ints in 0..9, fighter_0's then fighter_1's. Returns observations
         (N, 2, 41) float32 (of the new episode where one ended), rewards (N, 2) float64,
         terminated (N,), truncated (N,), and `info`: `StepEvents` fields (each (2, N)),
-        `health` and `stocks` (2, N) before any reset, `winner` (N,) (0, 1, -1 draw; -2 while the
-        fight goes on), `done_index` (the ended fights' indices, ascending) and
-        `final_observation` (len(done_index), 2, 41): their last observations.
+        `health` and `stocks` (2, N) before any reset, `winner` (N,) (`Outcome` codes: 0, 1,
+        DRAW -1, GOING_ON -2 while the fight goes on), `done_index` (the ended fights' indices,
+        ascending) and `final_observation` (len(done_index), 2, 41): their last observations.
         """
-        if self._kernel is None:
-            events, rewards, terminated, truncated, winner = self.advance(actions)
-            observations = self.observe()
-        else:
-            events, rewards, terminated, truncated, winner, observations = self._compiled_step(
-                actions
-            )
+        events, rewards, terminated, truncated, winner, observations = self._compiled_step(actions)
         s = self.state
         info = {
             "damage_dealt": events.damage_dealt,
@@ -164,7 +151,7 @@ class VectorFight:
             "stocks": s.stocks.copy(),
             "winner": winner,
         }
-        index = np.flatnonzero(winner != -2)
+        index = np.flatnonzero(winner != Outcome.GOING_ON)
         info["done_index"] = index
         info["final_observation"] = observations[index]
         if index.size:
@@ -175,31 +162,13 @@ class VectorFight:
     def advance(self, actions: np.ndarray):
         """One env step without the auto-reset: (events, rewards, terminated, truncated, winner)."""
         actions = self._check_actions(actions)
-        state, params, size = self.state, self.params, self.num_fights
+        size = self.num_fights
         events = StepEvents(size)
-        if self._kernel is not None:
-            reward = np.empty((size, 2))
-            truncated = np.empty(size, dtype=bool)
-            winner = np.empty(size, dtype=np.int64)
-            self._kernel.step(state, actions, events, reward, truncated, winner)
-            return events, reward, events.over.copy(), truncated, winner
-        columns = np.ascontiguousarray(actions.T)
-        for k in range(self.config.frame_skip):
-            saved = None
-            if k and events.over.any():  # a fight that ended takes no more frames this step
-                if events.over.all():
-                    break
-                index = np.flatnonzero(events.over)
-                saved = (index, state.take(index), events.take(index))
-            numpy_frame.frame(params, state, columns, events)
-            if saved is not None:
-                state.put(saved[0], saved[1])
-                events.put(saved[0], saved[2])
-        state.steps += 1
-        terminated = events.over.copy()
-        truncated = ~terminated & (state.steps >= self.config.max_cycles)
-        winner = np.where(terminated | truncated, winners(state), -2)
-        return events, rewards(params, state, events), terminated, truncated, winner
+        reward = np.empty((size, 2))
+        truncated = np.empty(size, dtype=bool)
+        winner = np.empty(size, dtype=np.int64)
+        self._kernel.step(self.state, actions, events, reward, truncated, winner)
+        return events, reward, events.over.copy(), truncated, winner
 
     def _compiled_step(self, actions: np.ndarray):
         """`advance` and `observe` in one compiled call, the fights in chunks on threads."""
@@ -224,39 +193,16 @@ class VectorFight:
 
     def observe(self) -> np.ndarray:
         """Every fight's observations now: (N, 2, 41) float32."""
-        if self._kernel is None:
-            return observe(self.params, self.state)
         out = np.empty(self.observation_shape, dtype=np.float32)
         self._kernel.observe(self.state, out, self._all)
         return out
 
     def _observe_into(self, out: np.ndarray, index: np.ndarray) -> None:
-        if self._kernel is None:
-            out[index] = observe(self.params, self.state, index)
-        else:
-            self._kernel.observe(self.state, out, index)
+        self._kernel.observe(self.state, out, index)
 
     def _reset_fights(self, index: np.ndarray) -> None:
         """`Fight.reset` for the fights `index`: jittered spawns, full stocks, both respawned."""
-        if self._kernel is not None:
-            self._kernel.reset(self.state, index)
-            return
-        p, s = self.params, self.state
-        jitter = p.spawn_jitter
-        for f in (0, 1):
-            x = np.full(index.shape, p.spawns[f])
-            # Fight.reset: x + (rng.uniform(-jitter, jitter) if jitter > 0 else 0.0)
-            x = x + (s.rng.uniform(index, -jitter, jitter) if jitter > 0 else 0.0)
-            s.spawn_x[f, index] = x
-            s.spawn_top[f, index] = p.spawn_top(x)
-        mask = np.zeros(self.num_fights, dtype=bool)
-        mask[index] = True
-        for f in (0, 1):
-            s.stocks[f, index] = self.config.stocks
-            numpy_frame.respawn(p, s, f, mask)
-        s.frame[index] = 0
-        s.steps[index] = 0
-        s.potential[index] = edge_advantage(p, s, index)  # HitAndRingOutReward.reset
+        self._kernel.reset(self.state, index)
 
     def _check_actions(self, actions: Any) -> np.ndarray:
         """The actions as an (N, 2) int64 array, once the batch has been reset."""

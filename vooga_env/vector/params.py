@@ -15,13 +15,11 @@ import numpy as np
 
 from vooga_env.config import FightConfig
 from vooga_env.rewards import HitAndRingOutReward
+from vooga_env.vector.layout import MOVES
 
 
 class UnsupportedConfig(ValueError):
     """A config option the batched engine cannot run (yet); the message names it."""
-
-
-MOVES = ("punch", "kick")  # move codes 1 and 2; 0 is no move
 
 
 def check_supported(config: FightConfig, reward_fn: object = None) -> None:
@@ -84,7 +82,7 @@ class FightParams:
     def from_config(cls, config: FightConfig) -> FightParams:
         arena, physics, fighter = config.arena, config.physics, config.fighter
         blocks = arena.blocks
-        attacks = [None, fighter.punch, fighter.kick]
+        attacks = [None, *(getattr(fighter, move) for move in MOVES)]  # by move code
 
         def table(name: str, dtype: type = np.float64) -> np.ndarray:
             values = [0 if a is None else getattr(a, name) for a in attacks]
@@ -101,8 +99,8 @@ class FightParams:
             block_h=np.array([b.height for b in blocks]),
             spawns=(arena.spawns[0], arena.spawns[1]),
             spawn_jitter=arena.spawn_jitter,
-            stage_left=min(b.x for b in blocks),
-            stage_right=max(b.x + b.width for b in blocks),
+            stage_left=arena.stage_left,
+            stage_right=arena.stage_right,
             gravity=physics.gravity,
             background_factor=physics.background_factor,
             speed_factor=physics.speed_factor,
@@ -125,20 +123,3 @@ class FightParams:
             hitbox_h=table("hitbox_height"),
             hitbox_offset_y=table("offset_y"),
         )
-
-    @property
-    def blocks(self) -> int:
-        return len(self.block_x)
-
-    def spawn_top(self, x: np.ndarray) -> np.ndarray:
-        """The top of the highest block under a fighter whose left edge is at `x` (spawn_block).
-
-        Ties go to the first block listed, as `min` does; the config guarantees a block under
-        every spawn, jitter included.
-        """
-        width = self.config.fighter.width
-        top = np.full(x.shape, np.inf)
-        for bx, by, bw in zip(self.block_x.tolist(), self.block_y.tolist(), self.block_w.tolist()):
-            under = (bx < x + width) & (x < bx + bw) & (by < top)
-            top = np.where(under, by, top)
-        return top

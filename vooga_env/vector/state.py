@@ -2,7 +2,7 @@
 
 Fighter fields are (2, N): row f is fighter f of every fight (contiguous, so a fighter's column
 of fights is one array). Fight fields are (N,). Units as in the single env: px, px/ms, frames.
-Move codes: 0 none, 1 punch, 2 kick (`params.MOVES`). The fields of one dtype live in one block
+Move codes: 0 none, 1 punch, 2 kick (`layout.MOVES`). The fields of one dtype live in one block
 (`floats`, `ints`, `flags`, `counters`, `values`), each field a view of it, so that the compiled
 kernel takes five arrays, not thirty.
 """
@@ -91,14 +91,6 @@ class FightState:
         """Bytes held by the state's arrays, the RNG streams included."""
         return sum(block.nbytes for block in self.blocks().values()) + self.rng.nbytes
 
-    def take(self, index: np.ndarray) -> dict[str, np.ndarray]:
-        """Copies of the fights `index` (for `put` after a frame they must not take part in)."""
-        return {name: block[..., index] for name, block in self.blocks().items()}
-
-    def put(self, index: np.ndarray, saved: dict[str, np.ndarray]) -> None:
-        for name, block in self.blocks().items():
-            block[..., index] = saved[name]
-
 
 for _block, _names in BLOCKS.items():
     for _row, _name in enumerate(_names):
@@ -129,13 +121,3 @@ class StepEvents:
     hits_blocked = property(lambda self: self.hits[1])
     rung_out = property(lambda self: self.outs[0])
     knocked_out = property(lambda self: self.outs[1])
-
-    def blocks(self) -> dict[str, np.ndarray]:
-        return {"damage": self.damage, "hits": self.hits, "outs": self.outs, "over": self.over}
-
-    def take(self, index: np.ndarray) -> dict[str, np.ndarray]:
-        return {name: block[..., index] for name, block in self.blocks().items()}
-
-    def put(self, index: np.ndarray, saved: dict[str, np.ndarray]) -> None:
-        for name, block in self.blocks().items():
-            block[..., index] = saved[name]

@@ -1,0 +1,39 @@
+"""`Outcome`: one encoding of winner / draw / going on, from the kernel's codes to the infos."""
+
+import numpy as np
+import pytest
+
+import vooga_env
+from vooga_env.outcome import Outcome
+
+
+def test_every_outcome_round_trips_through_its_info_string():
+    assert [outcome.info for outcome in Outcome] == [None, "draw", "fighter_0", "fighter_1"]
+    for outcome in Outcome:
+        assert Outcome.from_info(outcome.info) is outcome
+        assert Outcome(int(outcome)) is outcome  # the kernel's int64 code
+    assert [outcome.over for outcome in Outcome] == [False, True, True, True]
+    assert Outcome.of_leader(None) is Outcome.DRAW
+    assert Outcome.of_leader(1) is Outcome.FIGHTER_1
+
+
+def test_an_unknown_winner_string_names_the_allowed_ones():
+    with pytest.raises(ValueError, match="winner = 'fighter_2' is not one of None, 'draw'"):
+        Outcome.from_info("fighter_2")
+
+
+@pytest.mark.parametrize("backend", ["engine", "compiled"])
+def test_the_env_reports_the_outcome_string_only_at_the_end(backend):
+    env = vooga_env.parallel_env(backend=backend, max_cycles=30)
+    env.reset(seed=3)
+    rng = np.random.default_rng(3)
+    for _ in range(30):
+        actions = {agent: int(rng.integers(10)) for agent in env.agents}
+        _, _, terminated, truncated, infos = env.step(actions)
+        done = terminated["fighter_0"] or truncated["fighter_0"]
+        assert ("winner" in infos["fighter_0"]) == done
+        if done:
+            assert Outcome.from_info(infos["fighter_0"]["winner"]).over
+            break
+    else:
+        raise AssertionError("max_cycles=30 did not end the episode")
