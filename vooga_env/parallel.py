@@ -16,6 +16,7 @@ from vooga_env.config import FightConfig, load_config
 from vooga_env.fight import Fight
 from vooga_env.observations import HIGH, LOW, OBSERVATION_SIZE
 from vooga_env.outcome import INFO_KEYS, Outcome
+from vooga_env.render import frames_per_second
 from vooga_env.rewards import RewardFn
 from vooga_env.simulation import make_simulation
 
