@@ -89,8 +89,8 @@ class FightVectorEnv(gymnasium.vector.VectorEnv):
             self._spectator.reset(self.fights.state.rng.get_state(0))
         self._observations = self.fights.reset()
         reset_opponent = getattr(self.opponent, "reset", None)
-        if reset_opponent is not None:
-            reset_opponent(None if seed is None else int(np.asarray(seed).ravel()[0]))
+        if reset_opponent is not None:  # an int seed reseeds the opponent too; a list does not
+            reset_opponent(int(seed) if isinstance(seed, (int, np.integer)) else None)
         return self._observations[:, self.seat], {}
 
     def step(self, actions: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict]:

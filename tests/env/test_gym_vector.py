@@ -89,3 +89,10 @@ def test_bad_arguments_name_themselves():
     envs.reset(seed=0)
     with pytest.raises(ValueError, match=r"actions must have shape \(2,\), got \(3,\)"):
         envs.step(np.zeros(3, dtype=int))
+
+
+def test_a_list_of_seeds_seeds_each_fight():
+    envs = make(3, opponent="rush")
+    observations, _ = envs.reset(seed=[None, 4, None])
+    single, _ = vooga_env.parallel_env().reset(seed=4)
+    assert np.array_equal(observations[1], single["fighter_0"])
