@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 import torch
 from stable_baselines3 import PPO
-from stable_baselines3.common.callbacks import BaseCallback, CallbackList
+from stable_baselines3.common.callbacks import BaseCallback
 from stable_baselines3.common.utils import set_random_seed
 from stable_baselines3.common.vec_env import VecNormalize
 
@@ -42,7 +42,6 @@ from vooga_env.vector.opponents import VectorOpponent
 from vooga_env.vector.sb3 import FightVecEnv
 
 from . import common
-from .callbacks import StateCheckpointCallback
 from .checkpoints import (
     LATEST,
     LOCK_FILE,
@@ -54,11 +53,10 @@ from .checkpoints import (
     link_latest,
     read_state,
     remove_partial_files,
-    save_checkpoint,
 )
 from .exploit import make_learner
 from .league_pool import WEIGHTINGS, Pool, PoolOpponent
-from .train import StopAfter
+from .train import learn_and_save
 from .train_config import PPOConfig
 
 
@@ -316,26 +314,10 @@ def _run(
     torch.set_num_threads(1)
     set_random_seed(config.seed)
     model, league = build(config, folder, state, bool(state))
-    if not state:
-        save_checkpoint(model, folder, [league])  # step 0: from here on, --resume works
     every = max(config.checkpoint_every // config.fights, 1)
-    callbacks = [league, StateCheckpointCallback(every, folder, [league])]
-    callbacks += [StopAfter(minutes)] if minutes else []
-    remaining = config.total_timesteps - model.num_timesteps
-    try:
-        if remaining > 0:
-            model.learn(
-                remaining,
-                callback=CallbackList(callbacks),
-                reset_num_timesteps=not state,
-                progress_bar=progress,
-            )
-    except BaseException as error:
-        if not isinstance(error, Diverged):  # a diverged model is never saved
-            save_checkpoint(model, folder, [league])
-        raise
-    save_checkpoint(model, folder, [league])
-    return atomic_write(folder / "final.zip", model.save)
+    return learn_and_save(
+        model, folder, league, every, config.total_timesteps, not state, progress, minutes
+    )
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -211,18 +211,36 @@ def _run(
         opponents = CurriculumCallback(
             config.curriculum, config.seed, state.get("stage", 0), state.get("results", ())
         )
-    if not state:
-        save_checkpoint(model, folder, [opponents])  # step 0: from here on, --resume always works
     every = max(config.checkpoint_every // config.n_envs, 1)
+    return learn_and_save(
+        model, folder, opponents, every, config.total_timesteps, not state, progress, minutes
+    )
+
+
+def learn_and_save(
+    model: PPO,
+    folder: Path,
+    opponents: BaseCallback,
+    every: int,
+    total_timesteps: int,
+    fresh: bool,
+    progress: bool,
+    minutes: float,
+) -> Path:
+    """`model.learn` up to `total_timesteps` against `opponents` (a callback whose state is
+    checkpointed with the model): a committed checkpoint at step 0 of a fresh run, every `every`
+    calls, at the end and on the way out; the finished model as `folder/final.zip`."""
+    if fresh:
+        save_checkpoint(model, folder, [opponents])  # step 0: from here on, --resume works
     checkpoints = StateCheckpointCallback(every, folder, [opponents])
     callbacks = [opponents, checkpoints] + ([StopAfter(minutes)] if minutes else [])
-    remaining = config.total_timesteps - model.num_timesteps
+    remaining = total_timesteps - model.num_timesteps
     try:
         if remaining > 0:
             model.learn(
                 remaining,
                 callback=CallbackList(callbacks),
-                reset_num_timesteps=not state,
+                reset_num_timesteps=fresh,
                 progress_bar=progress,
             )
     except BaseException as error:
