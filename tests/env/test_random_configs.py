@@ -16,6 +16,8 @@ from hypothesis import strategies as st
 import vooga_env
 from vooga_env.config import ConfigError, load_config
 
+from .test_backends import assert_same
+
 pytest.importorskip("numba")
 
 STEPS = 300
@@ -131,32 +133,17 @@ def play_both(overrides: dict, seed: int, steps: int = STEPS) -> int:
         if step == 0 or not envs[0].agents:
             reseed = seed + episodes if episodes % 2 == 0 else None
             results = [env.reset(seed=reseed) for env in envs]
-            _same(*results)
+            assert_same(*results)
             episodes += 1
         pair = rng.integers(10, size=2).tolist()
         actions = {"fighter_0": pair[0], "fighter_1": pair[1]}
         results = [env.step(actions) for env in envs]
-        _same(*results)
+        assert_same(*results)
         assert envs[0].fighter_status() == envs[1].fighter_status(), step
         assert envs[0].state().tobytes() == envs[1].state().tobytes(), step
         for observation in results[0][0].values():
             assert np.isfinite(observation).all(), step
     return episodes
-
-
-def _same(first: tuple, second: tuple) -> None:
-    """Equal dicts of arrays (bit for bit) or of plain values (same type and value)."""
-    for part_one, part_two in zip(first, second, strict=True):
-        assert part_one.keys() == part_two.keys()
-        for key, one in part_one.items():
-            two = part_two[key]
-            if isinstance(one, np.ndarray):
-                assert one.dtype == two.dtype and one.tobytes() == two.tobytes(), key
-            elif isinstance(one, dict):
-                assert one == two, key
-                assert [type(v) for v in one.values()] == [type(v) for v in two.values()], key
-            else:
-                assert type(one) is type(two) and one == two, key
 
 
 _SETTINGS = dict(
