@@ -71,6 +71,28 @@ def test_same_seed_same_rollout_and_the_slots_are_the_batched_engines():
     assert np.array_equal(env.reset(), fights.reset(seed=3)[:, 1])
 
 
+def test_alternate_seats_put_fight_i_learner_in_seat_i_mod_2():
+    env = FightVecEnv(4, opponent="idle", seat="alternate", max_cycles=20, info_events=True)
+    env.seed(5)
+    seen = env.reset()
+    fights = VectorFight(4, max_cycles=20)
+    both = fights.reset(seed=5)
+    assert np.array_equal(seen, both[[0, 1, 2, 3], [0, 1, 0, 1]])
+    rng = np.random.default_rng(2)
+    for _ in range(25):  # the learner kicks, idle stands: rewards and outcomes are the learner's
+        actions = rng.integers(10, size=4)
+        pairs = np.zeros((4, 2), dtype=np.int64)
+        pairs[[0, 1, 2, 3], [0, 1, 0, 1]] = actions
+        observations, rewards, _, _, _ = fights.step(pairs)
+        mine, got, dones, infos = env.step(actions)
+        assert np.array_equal(mine, observations[[0, 1, 2, 3], [0, 1, 0, 1]])
+        assert np.allclose(got, rewards[[0, 1, 2, 3], [0, 1, 0, 1]])
+        for slot in np.flatnonzero(dones):
+            assert infos[slot]["winner"] in ("win", "loss", "draw")
+    with pytest.raises(ValueError, match="0, 1 or 'alternate'"):
+        FightVecEnv(2, opponent="idle", seat=2)
+
+
 def test_events_in_infos_on_request():
     env = FightVecEnv(2, opponent="rush", info_events=True)
     env.reset()

@@ -6,7 +6,8 @@ Two ways to fill the slots:
   and slot 2i + 1 its fighter_1; one policy plays both seats (the observations are mirrored).
 - `opponent="rush"` (any scripted fighter's name, or an object with `act(observations) ->
   actions` for a batch): N slots, the learner in seat `seat` of every fight, the opponent in the
-  other.
+  other; `seat="alternate"` puts fight i's learner in seat i % 2, so that it learns both sides
+  of a stage whose spawns are not mirror images.
 
 SB3's conventions: `reset()` returns the observations only; `seed(seed)` seeds fight i with
 `seed + i` at the next `reset()`; a fight that ends is reset at once, and its slots' infos carry
@@ -52,7 +53,7 @@ class FightVecEnv(VecEnv):
         num_fights: int,
         config: str | Path | FightConfig = "default",
         opponent: Any = None,
-        seat: int = 0,
+        seat: int | str = 0,
         backend: str = "auto",
         opponent_seed: int | None = None,
         info_events: bool = False,
@@ -60,7 +61,9 @@ class FightVecEnv(VecEnv):
         threads: int = 1,
         **overrides: Any,
     ) -> None:
-        seat = check_seat(seat)
+        alternate = seat == "alternate"
+        if not alternate:
+            seat = check_seat(seat, "0, 1 or 'alternate'")
         if render_mode not in (None, "rgb_array"):
             raise ValueError(f"render_mode must be None or 'rgb_array', got {render_mode!r}")
         self.fights = VectorFight(num_fights, config, backend=backend, threads=threads, **overrides)
@@ -68,6 +71,9 @@ class FightVecEnv(VecEnv):
         self._spectator = Spectator(self.fights.config) if render_mode else None
         self.opponent = None if opponent is None else batch_opponent(opponent, opponent_seed)
         self.seat = seat
+        fights = np.arange(num_fights)
+        self._rows = fights
+        self._seats = fights % 2 if alternate else np.full(num_fights, seat)
         self.info_events = info_events
         self.self_play = self.opponent is None
         slots = 2 * num_fights if self.self_play else num_fights
@@ -135,9 +141,10 @@ class FightVecEnv(VecEnv):
             pairs = actions.reshape(-1, 2)
         else:
             pairs = np.empty((self.fights.num_fights, 2), dtype=np.int64)
-            pairs[:, self.seat] = batch_actions("actions", actions, self.num_envs)
-            opponent_obs = self._observations[:, 1 - self.seat]
-            pairs[:, 1 - self.seat] = batch_actions(
+            rows, seats = self._rows, self._seats
+            pairs[rows, seats] = batch_actions("actions", actions, self.num_envs)
+            opponent_obs = self._observations[rows, 1 - seats]
+            pairs[rows, 1 - seats] = batch_actions(
                 f"opponent {self.opponent!r}: act(observations)",
                 self.opponent.act(opponent_obs),
                 self.num_envs,
@@ -150,7 +157,7 @@ class FightVecEnv(VecEnv):
         if self.self_play:
             slot_rewards, done = rewards.reshape(-1), np.repeat(terminated | truncated, 2)
         else:
-            slot_rewards, done = rewards[:, self.seat], terminated | truncated
+            slot_rewards, done = rewards[self._rows, self._seats], terminated | truncated
         self._returns += slot_rewards
         self._lengths += 1
         infos = self._infos(info, truncated)
@@ -189,25 +196,29 @@ class FightVecEnv(VecEnv):
     def _slots(self, observations: np.ndarray) -> np.ndarray:
         if self.self_play:
             return observations.reshape(-1, OBSERVATION_SIZE)
-        return observations[:, self.seat]
+        return observations[self._rows, self._seats]
+
+    def _slot_seats(self, fight: int) -> list[tuple[int, int]]:
+        """(slot, seat) for each learner slot of `fight`."""
+        if self.self_play:
+            return [(2 * fight, 0), (2 * fight + 1, 1)]
+        return [(fight, int(self._seats[fight]))]
 
     def _infos(self, info: dict, truncated: np.ndarray) -> list[dict[str, Any]]:
         """One dict per slot: the step's events, and at a fight's end the SB3 keys and winner."""
-        seats = (0, 1) if self.self_play else (self.seat,)
         if self.info_events:
             columns = {key: info[key].tolist() for key in _EVENTS}
             infos = [
                 {key: columns[key][seat][fight] for key in _EVENTS}
                 for fight in range(self.fights.num_fights)
-                for seat in seats
+                for _, seat in self._slot_seats(fight)
             ]
         else:
             infos = [{} for _ in range(self.num_envs)]
         elapsed = round(time.time() - self._start, 6)
         for row, fight in enumerate(info["done_index"].tolist()):
             winner = int(info["winner"][fight])
-            for seat in seats:
-                slot = fight * len(seats) + seats.index(seat)
+            for slot, seat in self._slot_seats(fight):
                 slot_info = infos[slot]
                 slot_info["terminal_observation"] = info["final_observation"][row, seat]
                 slot_info["TimeLimit.truncated"] = bool(truncated[fight])
