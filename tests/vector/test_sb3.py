@@ -83,12 +83,14 @@ def test_alternate_seats_put_fight_i_learner_in_seat_i_mod_2():
         actions = rng.integers(10, size=4)
         pairs = np.zeros((4, 2), dtype=np.int64)
         pairs[[0, 1, 2, 3], [0, 1, 0, 1]] = actions
-        observations, rewards, _, _, _ = fights.step(pairs)
+        observations, rewards, _, _, info = fights.step(pairs)
         mine, got, dones, infos = env.step(actions)
         assert np.array_equal(mine, observations[[0, 1, 2, 3], [0, 1, 0, 1]])
         assert np.allclose(got, rewards[[0, 1, 2, 3], [0, 1, 0, 1]])
         for slot in np.flatnonzero(dones):
-            assert infos[slot]["winner"] in ("win", "loss", "draw")
+            winner, seat = int(info["winner"][slot]), slot % 2
+            expected = "draw" if winner < 0 else ("win" if winner == seat else "loss")
+            assert infos[slot]["winner"] == expected
     with pytest.raises(ValueError, match="0, 1 or 'alternate'"):
         FightVecEnv(2, opponent="idle", seat=2)
 
