@@ -6,7 +6,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from vooga_env.config import CONFIG_DIR, ConfigError, build_config, load_config, read_toml
+from vooga_env.game.config import CONFIG_DIR, ConfigError, build_config, load_config, read_toml
 from vooga_env.policies import SCRIPTED
 
 TRAIN_DIR = CONFIG_DIR / "train"

@@ -11,8 +11,8 @@ import pytest
 import torch
 
 from agents import evaluate, match, tournament, train
-from vooga_env.actions import Action
-from vooga_env.observations import OBSERVATION_SIZE
+from vooga_env.game.actions import Action
+from vooga_env.game.observations import OBSERVATION_SIZE
 
 SMOKE = 'fight = "small"\ntotal_timesteps = 512\nn_envs = 2\ncheckpoint_every = 256\n'
 PPO_SMOKE = "[ppo]\nn_steps = 128\nbatch_size = 128\nn_epochs = 1\n"
