@@ -2,10 +2,10 @@
 
 `load_config("water", max_cycles=500)` takes a name from `configs/` (or a path to a .toml file)
 plus keyword overrides (nested tables as dicts: `physics={"gravity": 0.003}`). An unknown or
-missing key, a wrong type, a number out of range (|float| <= FLOAT_MAX, |int| <= INT_MAX, and each
-field's own range) or an impossible arena raises `ConfigError` naming the source, the key and the
-value; numpy scalars stand for the plain numbers they hold. A config that loads runs on every
-backend for any seed (`tests/env/test_random_configs.py` checks it).
+missing key, a wrong type, a number out of range (|float| <= FLOAT_MAX, |int| <= INT_MAX, a `seed`
+<= SEED_MAX, and each field's own range) or an impossible arena raises `ConfigError` naming the
+source, the key and the value; numpy scalars stand for the plain numbers they hold. A config that
+loads runs on every backend for any seed (`tests/env/test_random_configs.py` checks it).
 """
 
 from __future__ import annotations
@@ -38,6 +38,9 @@ REACTIONS = ("push", "momentum", "stop", "punch", "rebound", "force", "none")
 # float this large already makes no fight (positions and speeds stay far from overflow).
 INT_MAX = 2**31 - 1
 FLOAT_MAX = 1e9
+# A `seed` key (training, league, RLlib configs) is numpy's: its legacy seeding, which SB3 uses,
+# takes 0 .. 2**32 - 1; each config checks its own lower bound and room for per-env offsets.
+SEED_MAX = 2**32 - 1
 
 
 class ConfigError(ValueError):
@@ -247,6 +250,14 @@ def _as_dict(config: Any) -> Any:
     return config
 
 
+def overridden_source(path: Path, overrides: Mapping[str, Any]) -> str:
+    """The source an error names: the file, and the overrides given on top of it (a bad `--seed`
+    is the flag's fault, not the file's)."""
+    if not overrides:
+        return str(path)
+    return f"{path} with {', '.join(f'{key} = {value!r}' for key, value in overrides.items())}"
+
+
 def build_config(cls: type, data: Any, source: str, prefix: str = "") -> Any:
     """Build dataclass `cls` from `data`, checking every key and type; then check the whole.
 
@@ -312,9 +323,9 @@ def _convert(hint: Any, value: Any, source: str, key: str) -> Any:
     if hint is int:
         if isinstance(value, bool) or not isinstance(value, numbers.Integral):
             raise ConfigError(f"{source}: {key} must be an integer, got {value!r}")
-        value = int(value)
-        if abs(value) > INT_MAX:
-            raise ConfigError(f"{source}: {key} must be an integer in +-{INT_MAX}, got {value!r}")
+        value, limit = int(value), SEED_MAX if key.rpartition(".")[2] == "seed" else INT_MAX
+        if abs(value) > limit:
+            raise ConfigError(f"{source}: {key} must be an integer in +-{limit}, got {value!r}")
         return value
     if hint is str:
         if not isinstance(value, str):
