@@ -67,12 +67,13 @@ class Viewer:
         """The HUD's label of each fighter (default `fighter_0`, `fighter_1`)."""
         arena = fight.config.arena
         self.size = (int(arena.width), int(arena.height))
-        pygame.init()
+        pygame.font.init()  # not pygame.init(): that opens the audio device too, for nothing
         self.surface = pygame.Surface(self.size)
         self.font = pygame.font.Font(None, 22)
         self.window = None
         self.clock = None
         if mode == "human":
+            pygame.display.init()
             self.window = pygame.display.set_mode(self.size)
             pygame.display.set_caption("vooga_env")
             self.clock = pygame.time.Clock()
