@@ -11,7 +11,7 @@ from gymnasium.utils import seeding
 from pettingzoo import ParallelEnv
 from pettingzoo.utils.env import AECEnv
 
-from vooga_env.envs.render import frames_per_second
+from vooga_env.envs.render import LazyViewer, frames_per_second
 from vooga_env.game.actions import Action, action_index
 from vooga_env.game.config import FightConfig, load_config
 from vooga_env.game.fight import Fight
@@ -96,6 +96,8 @@ class FightParallelEnv(ParallelEnv):
         self._action_space = spaces.Discrete(len(Action))
         self.state_space = spaces.Box(LOW, HIGH, (2 * OBSERVATION_SIZE,), np.float32)
         self._viewer = None
+        if render_mode is not None:  # the simulation is then the engine's, see make_simulation
+            self._viewer = LazyViewer(self.simulation, render_mode, frames_per_second(self.config))
 
     def observation_space(self, agent: str) -> spaces.Box:
         """The same object on every call (PettingZoo asks for that), held by this env alone."""
@@ -177,20 +179,11 @@ class FightParallelEnv(ParallelEnv):
         RLlib's `ParallelPettingZooEnv.render()` passes one."""
         if self.render_mode is None:
             return None
-        if self._viewer is None:
-            from vooga_env.envs.render import Viewer
-
-            self._viewer = Viewer(self.fight, self.render_mode, self.metadata["render_fps"])
         return self._viewer.draw()
 
     def close(self) -> None:
         if self._viewer is not None:
             self._viewer.close()
-            self._viewer = None
-
-    def __getstate__(self) -> dict[str, Any]:
-        """Everything but the viewer (pygame surfaces don't pickle); a copy draws afresh."""
-        return {**self.__dict__, "_viewer": None}
 
     def _read_actions(self, actions: dict[str, Any]) -> tuple[int, int]:
         if type(actions) is dict and len(actions) == 2:  # the usual case, checked quickly

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import os
 import warnings
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -158,3 +158,27 @@ class Viewer:
         if self.window is not None:
             self.pygame.display.quit()
             self.window = None
+
+
+class LazyViewer:
+    """The `Viewer` of an engine simulation's fight, made at the first frame (pygame is imported
+    only then) and left out of a pickle (pygame surfaces don't pickle; a copy draws afresh)."""
+
+    def __init__(self, simulation: Any, mode: str, fps: int) -> None:
+        self.simulation = simulation
+        self.mode = mode
+        self.fps = fps
+        self.viewer: Viewer | None = None
+
+    def draw(self) -> np.ndarray:
+        if self.viewer is None:
+            self.viewer = Viewer(self.simulation.fight, self.mode, self.fps)
+        return self.viewer.draw()
+
+    def close(self) -> None:
+        if self.viewer is not None:
+            self.viewer.close()
+            self.viewer = None
+
+    def __getstate__(self) -> dict[str, Any]:
+        return {**self.__dict__, "viewer": None}

@@ -8,10 +8,9 @@ keeps one, and pays an engine step (~75 µs) per batch step for it.
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 
+from vooga_env.envs.render import LazyViewer, frames_per_second
 from vooga_env.game.config import FightConfig
 from vooga_env.game.outcome import Outcome
 from vooga_env.game.simulation import EngineSimulation
@@ -23,7 +22,7 @@ class Spectator:
     def __init__(self, config: FightConfig) -> None:
         self.simulation = EngineSimulation(config)
         self._rng = np.random.Generator(np.random.PCG64())
-        self._viewer: Any = None
+        self.viewer = LazyViewer(self.simulation, "rgb_array", frames_per_second(config))
 
     def reset(self, rng_state: dict | None = None) -> None:
         """Start the next game; from `rng_state` (the batched fight's PCG64 state just before
@@ -40,17 +39,7 @@ class Spectator:
 
     def render(self) -> np.ndarray:
         """The fight's current frame, (H, W, 3) uint8."""
-        if self._viewer is None:
-            from vooga_env.envs.render import Viewer, frames_per_second
-
-            fight = self.simulation.fight
-            self._viewer = Viewer(fight, "rgb_array", frames_per_second(fight.config))
-        return self._viewer.draw()
+        return self.viewer.draw()
 
     def close(self) -> None:
-        if self._viewer is not None:
-            self._viewer.close()
-            self._viewer = None
-
-    def __getstate__(self) -> dict[str, Any]:
-        return {**self.__dict__, "_viewer": None}
+        self.viewer.close()
