@@ -7,7 +7,7 @@ scripted fighters and short-lived exploiters, each game's opponent drawn by PFSP
 
 Config-driven (`configs/league/*.toml`; `[ppo]` as in agents.train, `[league]` below). The
 learner sits in seat i % 2 of fight i of `fights` batched fights (`FightVecEnv`,
-`seat="alternate"`: the stage's spawns are not mirror images, so it learns both sides); fight
+`seat="alternate"`: both seats in every rollout, whatever the engine does in seat order); fight
 i's opponent is `PoolOpponent.assigned[i]`, drawn again from the pool at the end of each game
 (`agents.league_pool`: harder opponents more often). Every `save_steps` a snapshot of the
 learner joins the pool (the last `window` stay); every `exploiter_every` steps (0: never) a

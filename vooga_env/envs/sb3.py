@@ -6,8 +6,9 @@ Two ways to fill the slots:
   and slot 2i + 1 its fighter_1; one policy plays both seats (the observations are mirrored).
 - `opponent="rush"` (any scripted fighter's name, or an object with `act(observations) ->
   actions` for a batch): N slots, the learner in seat `seat` of every fight, the opponent in the
-  other; `seat="alternate"` puts fight i's learner in seat i % 2, so that it learns both sides
-  of a stage whose spawns are not mirror images.
+  other; `seat="alternate"` puts fight i's learner in seat i % 2, so that it trains in both
+  (the observations are mirrored, so that matters only where a stage or the engine's order of
+  the two fighters is not symmetric).
 
 SB3's conventions: `reset()` returns the observations only; `seed(seed)` seeds fight i with
 `seed + i` at the next `reset()`; a fight that ends is reset at once, and its slots' infos carry
