@@ -20,11 +20,14 @@ from vooga_env.policies import SCRIPTED
 
 class FightMultiAgentEnv(MultiAgentEnv):
     """Two fighters, `fighter_0` and `fighter_1`; `env_config` holds `fight` (a config name or
-    path) and any override `FightParallelEnv` takes (`max_cycles`, ...)."""
+    path), the run's `seed` (optional) and any override `FightParallelEnv` takes
+    (`max_cycles`, ...)."""
 
     def __init__(self, env_config: dict[str, Any] | None = None) -> None:
         super().__init__()
         options = dict(env_config or {})
+        self.run_seed: int | None = options.pop("seed", None)
+        self.worker_index = int(getattr(env_config, "worker_index", 0) or 0)  # RLlib's EnvContext
         self.fight = FightParallelEnv(options.pop("fight", "default"), **options)
         self.possible_agents = list(AGENTS)
         self.agents = list(AGENTS)
@@ -33,7 +36,16 @@ class FightMultiAgentEnv(MultiAgentEnv):
 
     def reset(self, *, seed: int | None = None, options: dict | None = None) -> tuple[dict, dict]:
         self.agents = list(AGENTS)
-        return self.fight.reset(seed=seed, options=options)
+        return self.fight.reset(seed=self.fight_seed(seed), options=options)
+
+    def fight_seed(self, seed: int | None) -> int | None:
+        """A stream of its own for each env runner and vector index: RLlib seeds env i of
+        runner w with `seed + w + i` (so runner 1's env 1 and runner 2's env 0 would share
+        one); mixed with w and the run's seed, each (seed, w, i) gets its own."""
+        if seed is None or self.run_seed is None:
+            return seed
+        entropy = [self.run_seed, self.worker_index, seed]
+        return int(np.random.SeedSequence(entropy).generate_state(1, np.uint64)[0])
 
     def step(self, action_dict: dict[str, Any]) -> tuple[dict, dict, dict, dict, dict]:
         actions = {agent: int(action) for agent, action in action_dict.items()}

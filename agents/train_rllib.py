@@ -117,7 +117,7 @@ def algorithm_config(config: RLlibTrainConfig, league: Any) -> Any:
         specs[module_id] = network_spec(config)
     return (
         PPOConfig()
-        .environment(FightMultiAgentEnv, env_config={"fight": config.fight})
+        .environment(FightMultiAgentEnv, env_config={"fight": config.fight, "seed": config.seed})
         .env_runners(
             num_env_runners=config.env_runners,
             num_envs_per_env_runner=config.envs_per_runner,
