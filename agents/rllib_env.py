@@ -18,6 +18,14 @@ from vooga_env.parallel import AGENTS, FightParallelEnv
 from vooga_env.policies import SCRIPTED
 
 
+def fight_seed(run_seed: int, worker_index: int, seed: int) -> int:
+    """A stream of its own for each env runner and vector index: RLlib resets env i of runner
+    w with `seed = run_seed + w + i`, so runner 1's env 1 and runner 2's env 0 would share one;
+    (run_seed, w, seed) tells every (w, i) apart."""
+    entropy = [run_seed, worker_index, seed]
+    return int(np.random.SeedSequence(entropy).generate_state(1, np.uint64)[0])
+
+
 class FightMultiAgentEnv(MultiAgentEnv):
     """Two fighters, `fighter_0` and `fighter_1`; `env_config` holds `fight` (a config name or
     path), the run's `seed` (optional) and any override `FightParallelEnv` takes
@@ -36,16 +44,9 @@ class FightMultiAgentEnv(MultiAgentEnv):
 
     def reset(self, *, seed: int | None = None, options: dict | None = None) -> tuple[dict, dict]:
         self.agents = list(AGENTS)
-        return self.fight.reset(seed=self.fight_seed(seed), options=options)
-
-    def fight_seed(self, seed: int | None) -> int | None:
-        """A stream of its own for each env runner and vector index: RLlib seeds env i of
-        runner w with `seed + w + i` (so runner 1's env 1 and runner 2's env 0 would share
-        one); mixed with w and the run's seed, each (seed, w, i) gets its own."""
-        if seed is None or self.run_seed is None:
-            return seed
-        entropy = [self.run_seed, self.worker_index, seed]
-        return int(np.random.SeedSequence(entropy).generate_state(1, np.uint64)[0])
+        if seed is not None and self.run_seed is not None:
+            seed = fight_seed(self.run_seed, self.worker_index, seed)
+        return self.fight.reset(seed=seed, options=options)
 
     def step(self, action_dict: dict[str, Any]) -> tuple[dict, dict, dict, dict, dict]:
         actions = {agent: int(action) for agent, action in action_dict.items()}

@@ -1,5 +1,5 @@
-"""RLlib self-play on a local Ray: train, resume, export, play; clear errors for bad input.
-Skipped without the `rllib` extra."""
+"""RLlib self-play on the tests' Ray (conftest): train, resume, export, play; clear errors for
+bad input. Skipped without the `rllib` extra."""
 
 import json
 import os
@@ -30,17 +30,8 @@ from vooga_env.policies import make_policy  # noqa: E402
 ROOT = Path(__file__).resolve().parents[3]
 
 
-@pytest.fixture(scope="module")
-def smoke_run(local_ray, tmp_path_factory):
-    """One iteration, then a resume for a second: the run folder and both final states."""
-    folder = tmp_path_factory.mktemp("smoke")
-    first = train(load_rllib_config("rllib_smoke", iterations=1), folder, echo=False)
-    second = train(load_rllib_config("rllib_smoke", iterations=2), folder, resume=True, echo=False)
-    return folder, first, second
-
-
 def test_smoke_trains_resumes_and_logs_the_league(smoke_run):
-    folder, first, second = smoke_run
+    folder, first, second = smoke_run.folder, smoke_run.first, smoke_run.second
     config = load_rllib_config("rllib_smoke")
     assert first["iteration"] == 1
     assert first["league"]["snapshots"] == ["main_v1"]  # snapshot_every = 1
@@ -55,7 +46,7 @@ def test_smoke_trains_resumes_and_logs_the_league(smoke_run):
 
 
 def test_the_exported_fighter_plays_matches_and_the_gym_env(smoke_run):
-    folder, _, _ = smoke_run
+    folder = smoke_run.folder
     fighter = make_policy(folder / "main.npz")
     result = run_match(fighter, "rush", episodes=2, config="small", seed=0)
     assert result.games == 2
@@ -69,7 +60,7 @@ def test_export_gives_the_modules_own_logits(smoke_run, tmp_path):
     from ray.rllib.core.columns import Columns
     from ray.rllib.core.rl_module.rl_module import RLModule
 
-    folder, _, _ = smoke_run
+    folder = smoke_run.folder
     path = export_checkpoint(folder / CHECKPOINT, "main_v2", tmp_path / "exported.npz")
     module = RLModule.from_checkpoint(
         folder / CHECKPOINT / "learner_group" / "learner" / "rl_module" / "main_v2"
@@ -85,13 +76,13 @@ def test_export_gives_the_modules_own_logits(smoke_run, tmp_path):
 
 def test_resume_from_a_checkpoint_that_does_not_fit_names_it(smoke_run, tmp_path):
     folder = tmp_path / "run"
-    shutil.copytree(smoke_run[0], folder)
+    shutil.copytree(smoke_run.folder, folder)
     wider = load_rllib_config("rllib_smoke", iterations=3, ppo={"net_arch": [48, 48]})
     with pytest.raises(ConfigError, match=f"checkpoint {folder / CHECKPOINT} does not fit"):
         train(wider, folder, resume=True, echo=False)
 
 
-def test_more_env_runners_or_gpus_than_the_cluster_has_are_refused_not_waited_for(local_ray):
+def test_more_env_runners_or_gpus_than_the_cluster_has_are_refused_not_waited_for(ray_cluster):
     with pytest.raises(ConfigError, match="env_runners = 3, .* need 3 CPUs; .* has 2 CPUs"):
         connect(None, load_rllib_config("rllib_smoke", env_runners=3))
     with pytest.raises(ConfigError, match="gpus_per_learner = 1 need 1 GPUs; .* has 0 GPUs"):
