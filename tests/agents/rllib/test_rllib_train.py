@@ -1,12 +1,15 @@
 """RLlib self-play on the tests' Ray (conftest): train, resume, export, play; clear errors for
 bad input. Skipped without the `rllib` extra."""
 
+import contextlib
 import json
 import os
 import shutil
 import signal
+import socket
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 from typing import Any
@@ -17,6 +20,7 @@ import pytest
 ray = pytest.importorskip("ray")
 pytest.importorskip("ray.rllib")
 
+from agents import train_rllib  # noqa: E402
 from agents.rllib_config import load_rllib_config  # noqa: E402
 from agents.rllib_export import export_checkpoint  # noqa: E402
 from agents.train_rllib import CHECKPOINT, check_address, connect, main, train  # noqa: E402
@@ -97,6 +101,45 @@ def test_an_address_that_does_not_answer_fails_within_seconds(capsys, tmp_path):
     assert "--address 127.0.0.1:9: no Ray cluster answers there" in capsys.readouterr().err
     with pytest.raises(ConfigError, match="not HOST:PORT"):
         check_address("nowhere")
+
+
+@pytest.fixture
+def listener():
+    """Starts servers that accept, read, then send a reply (None: stay silent); HOST:PORT."""
+    servers = []
+
+    def start(reply: bytes | None) -> str:
+        server = socket.create_server(("127.0.0.1", 0))
+        servers.append(server)
+        threading.Thread(target=serve, args=(server, reply), daemon=True).start()
+        return f"127.0.0.1:{server.getsockname()[1]}"
+
+    def serve(server: socket.socket, reply: bytes | None) -> None:
+        held = []  # kept open: a silent server, not one that hangs up
+        with contextlib.suppress(OSError):  # the server closed at the test's end
+            while True:
+                held.append(server.accept()[0])
+                held[-1].recv(64)
+                if reply is not None:
+                    held[-1].sendall(reply)
+
+    yield start
+    for server in servers:
+        server.close()
+
+
+def test_an_address_that_accepts_but_is_not_ray_fails_within_the_timeout(
+    monkeypatch, listener, ray_cluster
+):
+    """ray.init would wait on these for minutes; a real head passes the same check."""
+    monkeypatch.setattr(train_rllib, "CONNECT_TIMEOUT_S", 0.5)
+    silent = listener(None)
+    with pytest.raises(ConnectionError, match=f"{silent}: no Ray cluster answers .*timed out"):
+        check_address(silent)
+    web = listener(b"HTTP/1.1 400 Bad Request\r\n\r\n")
+    with pytest.raises(ConnectionError, match=f"{web}: something answers .* not as a Ray"):
+        check_address(web)
+    check_address(ray.get_runtime_context().gcs_address)
 
 
 def test_an_unknown_module_id_is_named_with_the_known_ones(tmp_path):
