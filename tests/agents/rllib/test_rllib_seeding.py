@@ -77,7 +77,9 @@ def test_every_runner_and_vector_index_gets_a_stream_of_its_own(run_seed):
 def test_runners_given_the_same_reset_seed_fight_apart():
     """The default fight jitters the spawns: another runner, another fight; the same, the same."""
     one, two = (
-        FightMultiAgentEnv(EnvContext({"fight": "default", "seed": 5}, worker_index=w))
+        FightMultiAgentEnv(
+            EnvContext({"fight": "default", "backend": "engine", "seed": 5}, worker_index=w)
+        )
         for w in (1, 2)
     )
     first, again, other = one.reset(seed=11)[0], one.reset(seed=11)[0], two.reset(seed=11)[0]
