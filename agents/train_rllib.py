@@ -439,7 +439,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--config", default="rllib_selfplay", help="a configs/train name or path")
     parser.add_argument("--out", type=Path, help="run folder (default runs/CONFIG)")
-    parser.add_argument("--seed", type=int)
+    parser.add_argument("--seed", type=int, help="the same seed repeats a run (docs/rllib.md)")
     parser.add_argument("--iterations", type=int, help="training iterations (overrides)")
     parser.add_argument("--env-runners", type=int, help="env runner processes (overrides)")
     parser.add_argument("--envs-per-runner", type=int, help="fights each runner steps (overrides)")
