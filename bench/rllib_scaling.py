@@ -9,7 +9,7 @@ runner's step time (RLlib's env-step, module-inference and connector timers). SB
 `vooga_env.envs.sb3.FightVecEnv` (the batched engine) against a scripted fighter, with its
 rollout and training phases timed apart.
 
-    nice -n 10 python -m bench.rllib_scaling                 # ~3 minutes on 2 cores
+    nice -n 10 python -m bench.rllib_scaling                 # ~1 minute on 2 cores (load 4-5)
     nice -n 10 python -m bench.rllib_scaling --runners 0 2   # some rows only
 """
 
