@@ -26,6 +26,7 @@ from vooga_env.fight import Fight
 from vooga_env.formulas import time_out
 from vooga_env.observations import observe_both
 from vooga_env.outcome import Outcome
+from vooga_env.pixels import PixelRenderer, PixelSpec
 from vooga_env.rewards import HitAndRingOutReward, RewardFn
 
 BACKENDS = ("auto", "engine", "compiled")
@@ -50,6 +51,10 @@ class Simulation(Protocol):
 
     def fighter_status(self) -> list[dict[str, Any]]:
         """Each fighter's top-left `x`, `y` (px), `health` and `stocks` now."""
+        ...
+
+    def pixel_renderer(self, spec: PixelSpec) -> Any:
+        """An object whose `render()` gives both fighters' images now, (2, H, W, C) uint8."""
         ...
 
 
@@ -110,6 +115,10 @@ class EngineSimulation:
             {"x": f.x, "y": f.y, "health": f.health, "stocks": f.stocks}
             for f in self.fight.fighters
         ]
+
+    def pixel_renderer(self, spec: PixelSpec) -> PixelRenderer:
+        """The numpy renderer of this fight (`vooga_env.pixels`)."""
+        return PixelRenderer(self.fight, spec)
 
 
 def _reward_pair(reward_fn: RewardFn, rewards: Any) -> list[float]:

@@ -30,6 +30,17 @@ SOURCES = (
     HERE.parent / "physics" / "formulas.py",
     HERE.parent / "formulas.py",
 )
+# the pixel rasteriser: its own cache files and stamp, compiled on the first pixel observation
+RASTER_SOURCES = (
+    HERE / "raster.py",
+    HERE / "kernel_parts.py",
+    HERE / "layout.py",
+    HERE / "state.py",
+    HERE.parent / "pixels.py",
+    HERE.parent / "pixel_formulas.py",
+    HERE.parent / "observations.py",
+    HERE.parent / "actions.py",
+)
 
 
 # numba's OpenMP pool shares libgomp with torch and changes torch's thread count when it starts;
@@ -38,18 +49,18 @@ THREADING_LAYER = "workqueue"
 _announced = False
 
 
-def drop_stale_kernel_cache() -> bool:
-    """Delete the kernel's cached machine code if its sources changed since it was cached;
-    whether a current cache is there."""
-    digest = hashlib.sha256(b"".join(path.read_bytes() for path in SOURCES)).hexdigest()
+def drop_stale_kernel_cache(prefix: str = "kernel", sources: tuple[Path, ...] = SOURCES) -> bool:
+    """Delete the cached machine code of the modules named `prefix*` if `sources` changed since
+    it was cached; whether a current cache is there."""
+    digest = hashlib.sha256(b"".join(path.read_bytes() for path in sources)).hexdigest()
     cache = HERE / "__pycache__"
-    stamp = cache / "kernel_sources.sha256"
+    stamp = cache / f"{prefix}_sources.sha256"
     try:
         if stamp.read_text() == digest:
-            return any(cache.glob("kernel*.nbi"))
+            return any(cache.glob(f"{prefix}*.nbi"))
     except OSError:
         pass
-    for path in cache.glob("kernel*.nb[ci]"):
+    for path in cache.glob(f"{prefix}*.nb[ci]"):
         path.unlink(missing_ok=True)
     try:
         cache.mkdir(exist_ok=True)
@@ -79,6 +90,14 @@ def load_kernel() -> ModuleType:
     from vooga_env.vector import kernel
 
     return kernel
+
+
+def load_raster() -> ModuleType:
+    """The pixel rasteriser's module, its stale cache dropped first (it compiles in seconds)."""
+    drop_stale_kernel_cache("raster", RASTER_SOURCES)
+    from vooga_env.vector import raster
+
+    return raster
 
 
 def warm_up() -> float:

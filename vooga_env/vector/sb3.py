@@ -8,6 +8,10 @@ Two ways to fill the slots:
   actions` for a batch): N slots, the learner in seat `seat` of every fight, the opponent in the
   other.
 
+`obs_type` ("vector", "pixels" or "both", with `pixel_size` and `pixel_rgb`) as the single env's:
+images (H, W) uint8 per slot for `CnnPolicy` (and `VecFrameStack`), or a dict for
+`MultiInputPolicy`; opponents act on the vectors.
+
 SB3's conventions: `reset()` returns the observations only; `seed(seed)` seeds fight i with
 `seed + i` at the next `reset()`; a fight that ends is reset at once, and its slots' infos carry
 `terminal_observation`, `TimeLimit.truncated` (True when the time ran out), `winner` ("win",
@@ -36,7 +40,8 @@ from stable_baselines3.common.vec_env import VecEnv
 
 from vooga_env.actions import Action, batch_actions, check_seat
 from vooga_env.config import FightConfig
-from vooga_env.observations import HIGH, LOW, OBSERVATION_SIZE
+from vooga_env.obs_space import observation_space
+from vooga_env.pixels import pixel_spec
 from vooga_env.spectator import Spectator
 from vooga_env.vector.engine import VectorFight
 from vooga_env.vector.opponents import batch_opponent
@@ -58,12 +63,22 @@ class FightVecEnv(VecEnv):
         info_events: bool = False,
         render_mode: str | None = None,
         threads: int = 1,
+        obs_type: str = "vector",
         **overrides: Any,
     ) -> None:
         seat = check_seat(seat)
         if render_mode not in (None, "rgb_array"):
             raise ValueError(f"render_mode must be None or 'rgb_array', got {render_mode!r}")
-        self.fights = VectorFight(num_fights, config, backend=backend, threads=threads, **overrides)
+        pixel_spec(obs_type)  # an unknown obs_type is refused by its own name, not as "both"
+        self.obs_type = obs_type
+        self.fights = VectorFight(
+            num_fights,
+            config,
+            backend=backend,
+            threads=threads,
+            obs_type=obs_type if obs_type == "vector" else "both",  # opponents act on vectors
+            **overrides,
+        )
         self.render_mode = render_mode
         self._spectator = Spectator(self.fights.config) if render_mode else None
         self.opponent = None if opponent is None else batch_opponent(opponent, opponent_seed)
@@ -72,9 +87,7 @@ class FightVecEnv(VecEnv):
         self.self_play = self.opponent is None
         slots = 2 * num_fights if self.self_play else num_fights
         super().__init__(
-            slots,
-            spaces.Box(LOW, HIGH, (OBSERVATION_SIZE,), np.float32),
-            spaces.Discrete(len(Action)),
+            slots, observation_space(obs_type, self.fights.pixels), spaces.Discrete(len(Action))
         )
         self._fight_seeds: list[int] | None = None
         self._actions: np.ndarray | None = None
@@ -107,7 +120,8 @@ class FightVecEnv(VecEnv):
             self.fights.seed(self._fight_seeds)  # None, the first time: from entropy
         if self._spectator is not None:
             self._spectator.reset(self.fights.state.rng.get_state(0))
-        observations = self.fights.reset()
+        everything = self.fights.reset()
+        observations = self._vectors(everything)
         self._fight_seeds = None
         self._returns[:] = 0.0
         self._lengths[:] = 0
@@ -116,7 +130,7 @@ class FightVecEnv(VecEnv):
         if self.opponent is not None and hasattr(self.opponent, "reset"):
             self.opponent.reset()
         self._observations = observations
-        return self._slots(observations)
+        return self._slots(everything)
 
     def step_async(self, actions: np.ndarray) -> None:
         actions = np.asarray(actions)
@@ -142,10 +156,10 @@ class FightVecEnv(VecEnv):
                 self.opponent.act(opponent_obs),
                 self.num_envs,
             )
-        observations, rewards, terminated, truncated, info = self.fights.step(pairs)
+        everything, rewards, terminated, truncated, info = self.fights.step(pairs)
         if self._spectator is not None:
             self._spectator.step(int(pairs[0, 0]), int(pairs[0, 1]))
-        self._observations = observations
+        self._observations = self._vectors(everything)
         self._actions = None
         if self.self_play:
             slot_rewards, done = rewards.reshape(-1), np.repeat(terminated | truncated, 2)
@@ -154,7 +168,7 @@ class FightVecEnv(VecEnv):
         self._returns += slot_rewards
         self._lengths += 1
         infos = self._infos(info, truncated)
-        return self._slots(observations), slot_rewards.astype(np.float32), done, infos
+        return self._slots(everything), slot_rewards.astype(np.float32), done, infos
 
     def render(self, mode: str | None = None) -> np.ndarray | None:
         """Fight 0's frame, (H, W, 3) uint8, when made with `render_mode="rgb_array"`."""
@@ -186,10 +200,18 @@ class FightVecEnv(VecEnv):
         return [self.render()] + [None] * (self.num_envs - 1)
 
     # --- helpers
-    def _slots(self, observations: np.ndarray) -> np.ndarray:
+    def _slots(self, observations: Any) -> Any:
+        """The batch's observations (N, 2, ...) as the slots', as `obs_type` asks."""
+        if isinstance(observations, dict):
+            if self.obs_type == "pixels":
+                return self._slots(observations["pixels"])
+            return {key: self._slots(value) for key, value in observations.items()}
         if self.self_play:
-            return observations.reshape(-1, OBSERVATION_SIZE)
+            return observations.reshape(-1, *observations.shape[2:])
         return observations[:, self.seat]
+
+    def _vectors(self, observations: Any) -> np.ndarray:
+        return observations if self.obs_type == "vector" else observations["vector"]
 
     def _infos(self, info: dict, truncated: np.ndarray) -> list[dict[str, Any]]:
         """One dict per slot: the step's events, and at a fight's end the SB3 keys and winner."""
@@ -204,12 +226,13 @@ class FightVecEnv(VecEnv):
         else:
             infos = [{} for _ in range(self.num_envs)]
         elapsed = round(time.time() - self._start, 6)
+        finals = info["final_observation"]
         for row, fight in enumerate(info["done_index"].tolist()):
             winner = int(info["winner"][fight])
             for seat in seats:
                 slot = fight * len(seats) + seats.index(seat)
                 slot_info = infos[slot]
-                slot_info["terminal_observation"] = info["final_observation"][row, seat]
+                slot_info["terminal_observation"] = self._final(finals, row, seat)
                 slot_info["TimeLimit.truncated"] = bool(truncated[fight])
                 slot_info["winner"] = (
                     "draw" if winner < 0 else ("win" if winner == seat else "loss")
@@ -222,6 +245,14 @@ class FightVecEnv(VecEnv):
                 self._returns[slot] = 0.0
                 self._lengths[slot] = 0
         return infos
+
+    def _final(self, finals: Any, row: int, seat: int) -> Any:
+        """One slot's last observation of an ended fight, as `obs_type` asks."""
+        if not isinstance(finals, dict):
+            return finals[row, seat]
+        if self.obs_type == "pixels":
+            return finals["pixels"][row, seat]
+        return {key: value[row, seat] for key, value in finals.items()}
 
     def __repr__(self) -> str:
         against = "self-play" if self.self_play else f"vs {self.opponent!r} (seat {self.seat})"

@@ -1,0 +1,21 @@
+"""The observation space each `obs_type` gives one fighter: the vector, the image, or both."""
+
+from __future__ import annotations
+
+import numpy as np
+from gymnasium import spaces
+
+from vooga_env.observations import HIGH, LOW, OBSERVATION_SIZE
+from vooga_env.pixels import PixelSpec
+
+
+def observation_space(obs_type: str, spec: PixelSpec | None) -> spaces.Space:
+    """`Box(-2, 2, (41,), float32)`, `Box(0, 255, spec.shape, uint8)`, or a `Dict` of both
+    ("vector", "pixels"); `spec` is None for "vector" (see `pixels.pixel_spec`)."""
+    vector = spaces.Box(LOW, HIGH, (OBSERVATION_SIZE,), np.float32)
+    if spec is None:
+        return vector
+    pixels = spaces.Box(0, 255, spec.shape, np.uint8)
+    if obs_type == "pixels":
+        return pixels
+    return spaces.Dict({"vector": vector, "pixels": pixels})
