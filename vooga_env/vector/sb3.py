@@ -9,8 +9,9 @@ Two ways to fill the slots:
   other.
 
 `obs_type` ("vector", "pixels" or "both", with `pixel_size` and `pixel_rgb`) as the single env's:
-images (H, W) uint8 per slot for `CnnPolicy` (and `VecFrameStack`), or a dict for
-`MultiInputPolicy`; opponents act on the vectors.
+images (H, W, 1) uint8 per slot (grayscale with a channel axis, or (H, W, 3)), the shape
+`CnnPolicy` and `VecFrameStack` take, or a dict for `MultiInputPolicy`; opponents act on the
+vectors.
 
 SB3's conventions: `reset()` returns the observations only; `seed(seed)` seeds fight i with
 `seed + i` at the next `reset()`; a fight that ends is reset at once, and its slots' infos carry
@@ -87,7 +88,9 @@ class FightVecEnv(VecEnv):
         self.self_play = self.opponent is None
         slots = 2 * num_fights if self.self_play else num_fights
         super().__init__(
-            slots, observation_space(obs_type, self.fights.pixels), spaces.Discrete(len(Action))
+            slots,
+            observation_space(obs_type, self.fights.pixels, channel_axis=True),
+            spaces.Discrete(len(Action)),
         )
         self._fight_seeds: list[int] | None = None
         self._actions: np.ndarray | None = None
@@ -203,6 +206,7 @@ class FightVecEnv(VecEnv):
     def _slots(self, observations: Any) -> Any:
         """The batch's observations (N, 2, ...) as the slots', as `obs_type` asks."""
         if isinstance(observations, dict):
+            observations = {**observations, "pixels": self._channels(observations["pixels"])}
             if self.obs_type == "pixels":
                 return self._slots(observations["pixels"])
             return {key: self._slots(value) for key, value in observations.items()}
@@ -250,9 +254,14 @@ class FightVecEnv(VecEnv):
         """One slot's last observation of an ended fight, as `obs_type` asks."""
         if not isinstance(finals, dict):
             return finals[row, seat]
+        images = self._channels(finals["pixels"][row, seat])
         if self.obs_type == "pixels":
-            return finals["pixels"][row, seat]
-        return {key: value[row, seat] for key, value in finals.items()}
+            return images
+        return {"vector": finals["vector"][row, seat], "pixels": images}
+
+    def _channels(self, images: np.ndarray) -> np.ndarray:
+        """Grayscale images with a channel axis, (..., H, W, 1), as SB3 takes images."""
+        return images if self.fights.pixels.rgb else images[..., None]
 
     def __repr__(self) -> str:
         against = "self-play" if self.self_play else f"vs {self.opponent!r} (seat {self.seat})"
