@@ -65,80 +65,95 @@ class Rasteriser:
     def render(self, state, index: np.ndarray, out: np.ndarray) -> None:
         """Both fighters' images of the fights `index` into out[index], (N, 2, H, W, C) uint8."""
         index = np.asarray(index, dtype=np.int64)
+        if index.size == out.shape[0]:  # numpy copies the static image faster than a loop
+            out[:] = self.background
+        else:
+            out[index] = self.background
         _render(self.scene, state.floats, state.ints, state.flags, state.counters, index,
-                self.background, self.palette, out)  # fmt: skip
+                self.palette, out)  # fmt: skip
 
 
 @inline
-def _fill(out, i, o, palette, entry, top, bottom, left, right):
-    """Paint out[i, o]'s pixels (top..bottom, left..right), world columns, with a palette entry."""
-    cols, channels = out.shape[3], out.shape[4]
+def _fill(image, shape, o, palette, entry, top, bottom, left, right):
+    """Paint the pixels (top..bottom, left..right), world columns, of observer o's flat image
+    (`shape`: rows, cols, channels) with a palette entry."""
+    _, cols, channels = shape
     left, right = P.mirrored(left, right, cols, o)
+    if channels == 1:  # unit strides: the loop compiles to vector stores
+        value = palette[entry, 0]
+        for r in range(top, bottom + 1):
+            for c in range(r * cols + left, r * cols + right + 1):
+                image[c] = value
+        return
     for r in range(top, bottom + 1):
         for c in range(left, right + 1):
             for k in range(channels):
-                out[i, o, r, c, k] = palette[entry, k]
+                image[(r * cols + c) * channels + k] = palette[entry, k]
 
 
 @inline
-def _box(scene, out, x, y, w, h):
-    return P.box(x, y, w, h, scene[0], scene[1], out.shape[2], out.shape[3])
+def _box(scene, shape, x, y, w, h):
+    return P.box(x, y, w, h, scene[0], scene[1], shape[0], shape[1])
 
 
 @inline
-def _body(scene, fl, it, out, i, o, f, palette, shade, stunned):
+def _body(scene, fl, it, image, shape, i, o, f, palette, shade, stunned):
     """Fighter f's body and eye in observer o's image of fight i; its box in pixels."""
-    top, bottom, left, right = _box(scene, out, fl[S_X, f, i], fl[S_Y, f, i], scene[2],
+    top, bottom, left, right = _box(scene, shape, fl[S_X, f, i], fl[S_Y, f, i], scene[2],
                                     fl[S_HEIGHT, f, i])  # fmt: skip
     entry = stunned if it[S_HITSTUN, f, i] > 0 else shade
-    _fill(out, i, o, palette, entry, top, bottom, left, right)
+    _fill(image, shape, o, palette, entry, top, bottom, left, right)
     if top <= bottom and left <= right:
         eye_bottom, eye_column = P.eye(top, bottom, left, right, fl[S_FACING, f, i])
-        _fill(out, i, o, palette, EYE, top, eye_bottom, eye_column, eye_column)
+        _fill(image, shape, o, palette, EYE, top, eye_bottom, eye_column, eye_column)
     return top, bottom, left, right
 
 
 @inline
-def _shield(fl, fg, out, i, o, f, palette, top, bottom, left, right):
+def _shield(fl, fg, image, shape, i, o, f, palette, top, bottom, left, right):
     """Fighter f's shield column, in front of its box, while it blocks."""
     if fg[S_BLOCKING, f, i] and top <= bottom and left <= right:
         column = P.shield(left, right, fl[S_FACING, f, i])
-        if 0 <= column < out.shape[3]:
-            _fill(out, i, o, palette, SHIELD, top, bottom, column, column)
+        if 0 <= column < shape[1]:
+            _fill(image, shape, o, palette, SHIELD, top, bottom, column, column)
 
 
 @inline
-def _bar(out, i, o, row, share, palette, entry):
-    for c in range(P.bar(share, out.shape[3])):
-        for k in range(out.shape[4]):
-            out[i, o, row, c, k] = palette[entry, k]
+def _hitbox(scene, fl, fg, image, shape, i, o, f, palette):
+    """Fighter f's attack hitbox, while it is active."""
+    if fg[S_HIT_ACTIVE, f, i]:
+        top, bottom, left, right = _box(scene, shape, fl[S_HIT_X, f, i], fl[S_HIT_Y, f, i],
+                                        fl[S_HIT_W, f, i], fl[S_HIT_H, f, i])  # fmt: skip
+        _fill(image, shape, o, palette, HITBOX, top, bottom, left, right)
 
 
 @inline
-def _draw(scene, fl, it, fg, ct, out, i, o, palette):
+def _bar(image, shape, row, share, palette, entry):
+    _fill(image, shape, 0, palette, entry, row, row, 0, P.bar(share, shape[1]) - 1)
+
+
+@inline
+def _draw(scene, fl, it, fg, ct, image, shape, i, o, palette):
     """Observer o's image of fight i over its background: PixelRenderer._draw."""
     other = 1 - o
-    t0, b0, l0, r0 = _body(scene, fl, it, out, i, o, other, palette, OPPONENT, OPPONENT_STUNNED)
-    t1, b1, l1, r1 = _body(scene, fl, it, out, i, o, o, palette, SELF, SELF_STUNNED)
-    _shield(fl, fg, out, i, o, other, palette, t0, b0, l0, r0)
-    _shield(fl, fg, out, i, o, o, palette, t1, b1, l1, r1)
-    for f in (other, o):
-        if fg[S_HIT_ACTIVE, f, i]:
-            top, bottom, left, right = _box(scene, out, fl[S_HIT_X, f, i], fl[S_HIT_Y, f, i],
-                                            fl[S_HIT_W, f, i], fl[S_HIT_H, f, i])  # fmt: skip
-            _fill(out, i, o, palette, HITBOX, top, bottom, left, right)
-    _bar(out, i, o, 0, fl[S_HEALTH, o, i] / scene[3], palette, SELF)
-    _bar(out, i, o, 1, fl[S_HEALTH, other, i] / scene[3], palette, OPPONENT)
-    _bar(out, i, o, 2, 1.0 - ct[S_STEPS, i] / scene[4], palette, TIME)
+    t0, b0, l0, r0 = _body(scene, fl, it, image, shape, i, o, other, palette, OPPONENT,
+                           OPPONENT_STUNNED)  # fmt: skip
+    t1, b1, l1, r1 = _body(scene, fl, it, image, shape, i, o, o, palette, SELF, SELF_STUNNED)
+    _shield(fl, fg, image, shape, i, o, other, palette, t0, b0, l0, r0)
+    _shield(fl, fg, image, shape, i, o, o, palette, t1, b1, l1, r1)
+    _hitbox(scene, fl, fg, image, shape, i, o, other, palette)
+    _hitbox(scene, fl, fg, image, shape, i, o, o, palette)
+    _bar(image, shape, 0, fl[S_HEALTH, o, i] / scene[3], palette, SELF)
+    _bar(image, shape, 1, fl[S_HEALTH, other, i] / scene[3], palette, OPPONENT)
+    _bar(image, shape, 2, 1.0 - ct[S_STEPS, i] / scene[4], palette, TIME)
 
 
 @numba.njit(cache=True, nogil=True)
-def _render(scene, fl, it, fg, ct, index, background, palette, out):
-    rows, cols, channels = out.shape[2], out.shape[3], out.shape[4]
+def _render(scene, fl, it, fg, ct, index, palette, out):
+    """Paint what `_draw` paints on each image of the fights `index` (over its background),
+    each a flat row (one per fight and observer)."""
+    shape = (out.shape[2], out.shape[3], out.shape[4])
+    images = out.reshape(out.shape[0] * 2, shape[0] * shape[1] * shape[2])
     for i in index:
         for o in range(2):
-            for r in range(rows):
-                for c in range(cols):
-                    for k in range(channels):
-                        out[i, o, r, c, k] = background[o, r, c, k]
-            _draw(scene, fl, it, fg, ct, out, i, o, palette)
+            _draw(scene, fl, it, fg, ct, images[2 * i + o], shape, i, o, palette)
