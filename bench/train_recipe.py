@@ -17,6 +17,7 @@ as snapshots do in self-play (and, for reference, both taking the argmax).
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import time
 from pathlib import Path
@@ -73,11 +74,14 @@ def measure(model: Path, games: int, round_robin_games: int, seed: int = 12345) 
 
 
 def measure_pixels(model_path: Path, config: TrainConfig, games: int) -> dict[str, Any]:
-    """A pixel model (deterministic) against idle, random and rush, in the envs it trained in
-    (images, frame stack); `run_match` plays vector fighters only."""
+    """A pixel model against idle, random and rush, sampling its actions as it did in training,
+    in the envs it trained in (images, frame stack; 16 at once); `run_match` plays vector
+    fighters only."""
     from stable_baselines3 import PPO
 
     model = PPO.load(model_path, device="cpu")
+    model.set_random_seed(12345)
+    config = dataclasses.replace(config, n_envs=16)
     result = {}
     for offset, opponent in enumerate(("idle", "random", "rush")):
         envs = make_envs(config, opponent, seed=12345 + 1000 * offset)
@@ -85,7 +89,7 @@ def measure_pixels(model_path: Path, config: TrainConfig, games: int) -> dict[st
         scores: list[float] = []
         observations = envs.reset()
         while len(scores) < games:
-            actions, _ = model.predict(observations, deterministic=True)
+            actions, _ = model.predict(observations, deterministic=False)
             observations, _, dones, infos = envs.step(actions)
             scores += [learner_won(info) for done, info in zip(dones, infos) if done]
         scores = scores[:games]
