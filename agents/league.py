@@ -34,12 +34,12 @@ from stable_baselines3.common.callbacks import BaseCallback
 from stable_baselines3.common.utils import set_random_seed
 from stable_baselines3.common.vec_env import VecNormalize
 
-from vooga_env.config import CONFIG_DIR, ConfigError, build_config, load_config, read_toml
-from vooga_env.files import atomic_write, atomic_write_text
-from vooga_env.models import BatchPolicy, FrozenPolicy, load_model
+from vooga_env.envs.sb3 import FightVecEnv
+from vooga_env.game.config import CONFIG_DIR, ConfigError, build_config, load_config, read_toml
 from vooga_env.policies import SCRIPTED
-from vooga_env.vector.opponents import VectorOpponent
-from vooga_env.vector.sb3 import FightVecEnv
+from vooga_env.policies.batched import VectorOpponent
+from vooga_env.policies.models import BatchPolicy, FrozenPolicy, load_model
+from vooga_env.tools.files import atomic_write, atomic_write_text
 
 from . import common
 from .checkpoints import (

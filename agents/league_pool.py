@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from vooga_env.elo import START_RATING, update
+from vooga_env.tools.elo import START_RATING, update
 
 WEIGHTINGS = ("squared", "linear", "even")
 

@@ -1,8 +1,8 @@
 """The fight as an RLlib MultiAgentEnv, and the scripted fighters as non-learning RLModules.
 
 RLlib's new API stack steps `MultiAgentEnv`s (`ray.rllib.env.multi_agent_env`); this is the
-PettingZoo env (`vooga_env.parallel`) with RLlib's `"__all__"` done flags, no other change, so an
-RLlib-trained fighter sees exactly the observations an SB3 one does.
+PettingZoo env (`vooga_env.envs.parallel`) with RLlib's `"__all__"` done flags, no other change,
+so an RLlib-trained fighter sees exactly the observations an SB3 one does.
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from ray.rllib.core.columns import Columns
 from ray.rllib.core.rl_module.rl_module import RLModule
 from ray.rllib.env.multi_agent_env import MultiAgentEnv
 
-from vooga_env.parallel import AGENTS, FightParallelEnv
+from vooga_env.envs.parallel import AGENTS, FightParallelEnv
 from vooga_env.policies import SCRIPTED
 
 

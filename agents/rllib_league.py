@@ -5,7 +5,7 @@ The pool is the scripted fighters (non-learning `ScriptedModule`s) plus frozen s
 draw each episode's opponent in the policy-mapping function (`LeagueMapping`) with weights the
 driver recomputes every iteration from the tracked win rates and pushes to them; an episode-end
 callback (`LeagueCallbacks`) reports the result of every game to the driver through RLlib's
-metrics. Ratings use the Elo constants of `vooga_env.elo`.
+metrics. Ratings use the Elo constants of `vooga_env.tools.elo`.
 """
 
 from __future__ import annotations
@@ -18,8 +18,8 @@ from typing import Any
 import numpy as np
 from ray.rllib.callbacks.callbacks import RLlibCallback
 
-from vooga_env.elo import K_FACTOR, START_RATING, expected_score
-from vooga_env.parallel import AGENTS
+from vooga_env.envs.parallel import AGENTS
+from vooga_env.tools.elo import K_FACTOR, START_RATING, expected_score
 
 from .rllib_config import LeagueConfig
 

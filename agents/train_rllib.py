@@ -27,7 +27,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from vooga_env.config import ConfigError
+from vooga_env.game.config import ConfigError
 
 from .rllib_config import RLlibTrainConfig, load_rllib_config
 
@@ -221,8 +221,8 @@ def check_checkpoint(folder: Path) -> None:
     with its actions (an old checkpoint, or one of another game, is named with both sizes)."""
     from ray.rllib.core.rl_module.rl_module import RLModule
 
-    from vooga_env.actions import Action
-    from vooga_env.observations import OBSERVATION_SIZE
+    from vooga_env.game.actions import Action
+    from vooga_env.game.observations import OBSERVATION_SIZE
 
     from .rllib_league import MAIN
 

@@ -17,9 +17,9 @@ from pathlib import Path
 import numpy as np
 
 import vooga_env
-from vooga_env import pixels as px
-from vooga_env.files import atomic_write
+from vooga_env.game import pixels as px
 from vooga_env.policies import make_policy
+from vooga_env.tools.files import atomic_write
 
 GAP = 4  # pixels between images, in the sheet's own (scaled) pixels
 

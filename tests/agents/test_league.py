@@ -11,9 +11,9 @@ pytest.importorskip("stable_baselines3")
 
 from agents.league import load_league_config, main, train_league  # noqa: E402
 from agents.league_pool import Pool, PoolOpponent  # noqa: E402
-from vooga_env.config import ConfigError  # noqa: E402
-from vooga_env.models import load_model  # noqa: E402
-from vooga_env.vector.opponents import VectorOpponent, scripted_actions  # noqa: E402
+from vooga_env.game.config import ConfigError  # noqa: E402
+from vooga_env.policies.batched import VectorOpponent, scripted_actions  # noqa: E402
+from vooga_env.policies.models import load_model  # noqa: E402
 
 
 def test_pfsp_draws_the_opponent_the_learner_beats_least_far_more_often():

@@ -10,10 +10,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import vooga_env
-from vooga_env import pixels as px
-from vooga_env.pixel_formulas import HUD_ROWS
-from vooga_env.pixels import PixelRenderer, PixelSpec
-from vooga_env.vector.engine import VectorFight
+from vooga_env.game import pixels as px
+from vooga_env.game.pixel_formulas import HUD_ROWS
+from vooga_env.game.pixels import PixelRenderer, PixelSpec
+from vooga_env.kernel.vector_fight import VectorFight
 
 CONFIGS = ("default", "water", "platforms", "small")
 
@@ -182,7 +182,7 @@ def test_frame_stacks_hold_the_last_images():
 
     from stable_baselines3.common.vec_env import VecFrameStack
 
-    from vooga_env.vector.sb3 import FightVecEnv
+    from vooga_env.envs.sb3 import FightVecEnv
 
     vec = VecFrameStack(FightVecEnv(2, opponent="rush", obs_type="pixels"), 3)
     stacked = vec.reset()
@@ -195,7 +195,7 @@ def test_frame_stacks_hold_the_last_images():
 
 @pytest.mark.parametrize("obs_type", ["vector", "pixels", "both"])
 def test_every_face_gives_what_its_space_says(obs_type):
-    from vooga_env.vector.sb3 import FightVecEnv
+    from vooga_env.envs.sb3 import FightVecEnv
 
     kwargs = {"obs_type": obs_type, "pixel_size": (48, 64)}
     single = gymnasium.make("vooga_env/Fight-v0", opponent="random", **kwargs)
@@ -229,7 +229,7 @@ BAD = [
 
 @pytest.mark.parametrize(("kwargs", "message"), BAD)
 def test_bad_pixel_options_are_refused_by_name_on_every_face(kwargs, message):
-    from vooga_env.vector.sb3 import FightVecEnv
+    from vooga_env.envs.sb3 import FightVecEnv
 
     makers = [
         lambda: vooga_env.parallel_env(**kwargs),
@@ -248,10 +248,10 @@ def test_bad_pixel_options_are_refused_by_name_on_every_face(kwargs, message):
 
 def test_vector_observations_never_load_the_rasteriser():
     code = (
-        "import sys, numpy as np; from vooga_env.vector.engine import VectorFight; "
+        "import sys, numpy as np; from vooga_env.kernel.vector_fight import VectorFight; "
         "import vooga_env; env = vooga_env.parallel_env(); env.reset(seed=0); "
         "f = VectorFight(2); f.reset(seed=0); f.step(np.zeros((2, 2), int)); "
-        "print('vooga_env.vector.raster' in sys.modules)"
+        "print('vooga_env.kernel.raster' in sys.modules)"
     )
     result = subprocess.run(
         [sys.executable, "-c", code], capture_output=True, text=True, check=True

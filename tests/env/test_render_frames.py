@@ -3,7 +3,7 @@
 import numpy as np
 
 import vooga_env
-from vooga_env.render import FIGHTER_COLOURS, STAGE
+from vooga_env.envs.render import FIGHTER_COLOURS, STAGE
 
 
 def test_rgb_frame_shows_stage_and_both_fighters():

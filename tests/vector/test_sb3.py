@@ -11,10 +11,10 @@ from stable_baselines3 import PPO  # noqa: E402
 from stable_baselines3.common.vec_env import VecCheckNan, VecMonitor  # noqa: E402
 
 import vooga_env  # noqa: E402
+from vooga_env.envs.sb3 import FightVecEnv  # noqa: E402
+from vooga_env.kernel import VectorFight  # noqa: E402
 from vooga_env.policies import make_policy  # noqa: E402
-from vooga_env.vector import VectorFight  # noqa: E402
-from vooga_env.vector.opponents import NAMES, scripted_actions  # noqa: E402
-from vooga_env.vector.sb3 import FightVecEnv  # noqa: E402
+from vooga_env.policies.batched import NAMES, scripted_actions  # noqa: E402
 
 
 @pytest.fixture

@@ -10,7 +10,7 @@ pytest.importorskip("ray.rllib")
 from agents.rllib_config import load_rllib_config  # noqa: E402
 from agents.rllib_export import export_checkpoint  # noqa: E402
 from agents.train_rllib import CHECKPOINT, train  # noqa: E402
-from vooga_env.observations import OBSERVATION_SIZE  # noqa: E402
+from vooga_env.game.observations import OBSERVATION_SIZE  # noqa: E402
 from vooga_env.policies import make_policy  # noqa: E402
 
 

@@ -20,12 +20,12 @@ pytest.importorskip("ray.rllib")
 from agents.rllib_config import load_rllib_config  # noqa: E402
 from agents.rllib_export import export_checkpoint  # noqa: E402
 from agents.train_rllib import CHECKPOINT, check_address, connect, main, train  # noqa: E402
-from vooga_env.config import ConfigError  # noqa: E402
-from vooga_env.gym_env import FightEnv  # noqa: E402
-from vooga_env.match import run_match  # noqa: E402
-from vooga_env.models import load_mlp, save_mlp  # noqa: E402
-from vooga_env.observations import OBSERVATION_SIZE  # noqa: E402
+from vooga_env.envs.gym_env import FightEnv  # noqa: E402
+from vooga_env.game.config import ConfigError  # noqa: E402
+from vooga_env.game.observations import OBSERVATION_SIZE  # noqa: E402
 from vooga_env.policies import make_policy  # noqa: E402
+from vooga_env.policies.models import load_mlp, save_mlp  # noqa: E402
+from vooga_env.tools.match import run_match  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[3]
 
@@ -199,7 +199,7 @@ def test_export_reads_shared_and_separate_actor_encoders(shared, activation, tmp
     from ray.rllib.core.columns import Columns
 
     from agents.rllib_export import export_module
-    from vooga_env.observations import HIGH, LOW
+    from vooga_env.game.observations import HIGH, LOW
 
     space = gymnasium.spaces.Box(LOW, HIGH, (OBSERVATION_SIZE,), np.float32)
     module = default_module(space, fcnet_activation=activation, vf_share_layers=shared)
