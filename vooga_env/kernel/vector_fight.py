@@ -148,6 +148,8 @@ class VectorFight:
         `health` and `stocks` (2, N) before any reset, `winner` (N,) (`Outcome` codes: 0, 1,
         DRAW -1, GOING_ON -2 while the fight goes on), `done_index` (the ended fights' indices,
         ascending) and `final_observation` (len(done_index), 2, 41): their last observations.
+        With `obs_type="pixels"` the observations (and the final ones) are the images
+        (N, 2, H, W[, 3]) uint8 instead, with "both" a dict of the two ("vector", "pixels").
         """
         events, rewards, terminated, truncated, winner, observations = self._compiled_step(actions)
         s = self.state
