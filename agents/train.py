@@ -23,15 +23,17 @@ import math
 import shutil
 import sys
 import time
+from functools import partial
 from pathlib import Path
 from typing import Any
 
 import torch
+from gymnasium.wrappers import ReshapeObservation
 from stable_baselines3 import PPO
 from stable_baselines3.common.callbacks import BaseCallback, CallbackList
 from stable_baselines3.common.env_util import make_vec_env
 from stable_baselines3.common.utils import set_random_seed
-from stable_baselines3.common.vec_env import DummyVecEnv, VecEnv, VecNormalize
+from stable_baselines3.common.vec_env import DummyVecEnv, VecEnv, VecFrameStack, VecNormalize
 
 from vooga_env.envs.gym_env import FightEnv
 from vooga_env.game.config import ConfigError
@@ -57,15 +59,26 @@ from .checkpoints import (
 from .train_config import TrainConfig, load_train_config
 
 
-def make_envs(config: TrainConfig) -> VecEnv:
-    """`n_envs` single-agent fights in one process; the learner's seat is drawn each episode."""
+def make_envs(config: TrainConfig, opponent: str = "idle", seed: int | None = None) -> VecEnv:
+    """`n_envs` single-agent fights in one process; the learner's seat is drawn each episode.
+    With pixels, each image gets a channel axis (SB3's CnnPolicy takes (H, W, C)) and the last
+    `frame_stack` images are stacked."""
+    kwargs: dict[str, Any] = {"config": config.fight, "opponent": opponent, "seat": "random"}
+    wrapper = None
+    if config.obs_type == "pixels":
+        kwargs.update(obs_type="pixels", pixel_size=tuple(config.pixel_size))
+        shape = (*config.pixel_size, 1)
+        wrapper = partial(ReshapeObservation, shape=shape)
     envs = make_vec_env(
         FightEnv,
         n_envs=config.n_envs,
-        seed=config.seed,
+        seed=config.seed if seed is None else seed,
         vec_env_cls=DummyVecEnv,
-        env_kwargs={"config": config.fight, "opponent": "idle", "seat": "random"},
+        env_kwargs=kwargs,
+        wrapper_class=wrapper,
     )
+    if config.frame_stack > 1:
+        envs = VecFrameStack(envs, config.frame_stack)
     if config.ppo.normalize_reward:
         return VecNormalize(envs, norm_obs=False, norm_reward=True, gamma=config.ppo.gamma)
     return envs
@@ -75,7 +88,7 @@ def build_model(config: TrainConfig, envs: VecEnv, folder: Path) -> PPO:
     ppo = config.ppo
     tensorboard = str(folder / "tb") if importlib.util.find_spec("tensorboard") else None
     return PPO(
-        "MlpPolicy",
+        "CnnPolicy" if config.obs_type == "pixels" else "MlpPolicy",
         envs,
         learning_rate=ppo.learning_rate,
         n_steps=ppo.n_steps,

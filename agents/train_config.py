@@ -15,10 +15,12 @@ from vooga_env.game.config import (
     overridden_source,
     read_toml,
 )
+from vooga_env.game.pixels import pixel_spec
 from vooga_env.policies import SCRIPTED
 
 TRAIN_DIR = CONFIG_DIR / "train"
 MODES = ("scripted", "selfplay")
+OBS_TYPES = ("vector", "pixels")  # "both" would need MultiInputPolicy: not a recipe yet
 
 
 def _refuse(key: str, value: Any, allowed: str) -> None:
@@ -150,6 +152,9 @@ class TrainConfig:
     ppo: PPOConfig = PPOConfig()
     curriculum: CurriculumConfig = CurriculumConfig()
     selfplay: SelfPlayConfig = SelfPlayConfig()
+    obs_type: str = "vector"  # or "pixels": CnnPolicy on the fighter's images
+    pixel_size: tuple[int, ...] = (84, 84)  # (height, width) of the images
+    frame_stack: int = 1  # images stacked as channels (SB3's VecFrameStack)
     name: str = "default"
 
     def __post_init__(self) -> None:
@@ -162,6 +167,15 @@ class TrainConfig:
             )
         if not 0 <= self.seed <= SEED_MAX - self.n_envs:  # env i is seeded seed + i
             _refuse("seed", self.seed, f"must be in 0 .. {SEED_MAX - self.n_envs}")
+        if self.obs_type not in OBS_TYPES:
+            _refuse("obs_type", self.obs_type, f"one of {', '.join(OBS_TYPES)}")
+        try:
+            pixel_spec(self.obs_type, self.pixel_size)
+        except ValueError as error:
+            raise ConfigError(str(error)) from None
+        _at_least(self, 1, "frame_stack")
+        if self.obs_type == "vector" and self.frame_stack != 1:
+            _refuse("frame_stack", self.frame_stack, "1 with obs_type = 'vector'")
         if self.minutes < 0:
             _refuse("minutes", self.minutes, "must be >= 0 (0: no time budget)")
         try:

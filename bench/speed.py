@@ -9,7 +9,9 @@
 3. PPO `learn()` steps/s through `vooga_env.envs.sb3.FightVecEnv` (self-play, 2 slots per fight;
    and one learner against a scripted fighter) against PPO on CartPole (SB3's DummyVecEnv) with
    the same n_envs, n_steps and network (torch on one thread for both).
-4. Memory: the bytes of a 4096-fight batch's state arrays, and this process's peak RSS.
+4. Pixel observations (`obs_type="pixels"`, 84x84 grayscale) against the vector ones, on the
+   single env and on the batch at N = 256 and 1024: the cost of drawing what a fighter sees.
+5. Memory: the bytes of a 4096-fight batch's state arrays, and this process's peak RSS.
 
 Every figure is the median of several timed rounds, ours and the reference's interleaved so that
 a busy machine slows both alike; a ratio is the median of the rounds' ours / reference.
@@ -94,8 +96,8 @@ def cartpole_steps() -> Callable[[int], int]:
     return gymnasium_steps(gymnasium.make("CartPole-v1"))
 
 
-def parallel_steps(backend: str = "auto") -> Callable[[int], int]:
-    env = vooga_env.parallel_env(backend=backend)
+def parallel_steps(backend: str = "auto", obs_type: str = "vector") -> Callable[[int], int]:
+    env = vooga_env.parallel_env(backend=backend, obs_type=obs_type)
     env.reset(seed=0)
     actions = np.random.default_rng(0).integers(10, size=(4096, 2)).tolist()
     position = [0]
@@ -136,8 +138,8 @@ def gym_steps() -> Callable[[int], int]:
     return gymnasium_steps(gymnasium.make("vooga_env/Fight-v0", opponent="random"))
 
 
-def batched_steps(size: int, threads: int) -> Callable[[int], int]:
-    fights = VectorFight(size, threads=threads)
+def batched_steps(size: int, threads: int, obs_type: str = "vector") -> Callable[[int], int]:
+    fights = VectorFight(size, threads=threads, obs_type=obs_type)
     fights.reset(seed=0)
     actions = np.random.default_rng(0).integers(10, size=(16, size, 2))
     fights.step(actions[0])  # compiles (or loads) the numba kernel before any timing
@@ -148,6 +150,23 @@ def batched_steps(size: int, threads: int) -> Callable[[int], int]:
         return (k // 16) * size
 
     return run
+
+
+def pixel_rows(sizes: Sequence[int], seconds: float, rounds: int) -> list[dict]:
+    """Pixel observations against the vector ones on the same face, interleaved: the single env
+    (both backends) and the batch at N = 256 and 1024 (of `sizes`; else its largest)."""
+    rows = []
+    for backend in ("compiled", "engine"):
+        measured = side_by_side(
+            parallel_steps(backend, "pixels"), parallel_steps(backend), seconds, rounds
+        )
+        rows.append(row(f"ParallelEnv.step, backend={backend!r}", *measured, n=1))
+    for size in [s for s in sizes if s in (256, 1024)] or [max(sizes)]:
+        measured = side_by_side(
+            batched_steps(size, 1, "pixels"), batched_steps(size, 1), seconds, rounds
+        )
+        rows.append(row(f"VectorFight N={size} (1 thread)", *measured, n=size))
+    return rows
 
 
 def cartpole_vector_steps(size: int) -> Callable[[int], int]:
@@ -283,6 +302,9 @@ def main(argv: Sequence[str] | None = None) -> dict:
             )
     print_table("batched, env-steps/s", batched, "env-steps/s", "CartPole make_vec")
 
+    pixels = pixel_rows(args.sizes, seconds, rounds)
+    print_table("pixel observations (84x84 gray), steps/s", pixels, "pixels", "vector obs")
+
     ppo: list[dict] = []
     if not args.no_ppo and _version("stable_baselines3") is None:
         print("\nPPO: skipped, stable-baselines3 is not installed (the `train` extra)")
@@ -309,6 +331,7 @@ def main(argv: Sequence[str] | None = None) -> dict:
         "machine": machine(),
         "single": single,
         "batched": batched,
+        "pixels": pixels,
         "ppo": ppo,
         "memory": memory,
     }

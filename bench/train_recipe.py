@@ -17,13 +17,17 @@ as snapshots do in self-play (and, for reference, both taking the argmax).
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import time
 from pathlib import Path
 from typing import Any
 
-from agents.train import train
-from agents.train_config import load_train_config
+from stable_baselines3.common.vec_env import VecNormalize
+
+from agents.callbacks import learner_won
+from agents.train import make_envs, train
+from agents.train_config import TrainConfig, load_train_config
 from vooga_env.policies import SCRIPTED
 from vooga_env.policies.models import FrozenPolicy, load_model
 from vooga_env.tools.elo import K_FACTOR, START_RATING, round_robin
@@ -69,6 +73,36 @@ def measure(model: Path, games: int, round_robin_games: int, seed: int = 12345) 
     return result
 
 
+def measure_pixels(model_path: Path, config: TrainConfig, games: int) -> dict[str, Any]:
+    """A pixel model against idle, random and rush, sampling its actions as it did in training,
+    in the envs it trained in (images, frame stack; 16 at once); `run_match` plays vector
+    fighters only."""
+    from stable_baselines3 import PPO
+
+    model = PPO.load(model_path, device="cpu")
+    model.set_random_seed(12345)
+    config = dataclasses.replace(config, n_envs=16)
+    result = {}
+    for offset, opponent in enumerate(("idle", "random", "rush")):
+        envs = make_envs(config, opponent, seed=12345 + 1000 * offset)
+        envs = envs.venv if isinstance(envs, VecNormalize) else envs
+        scores: list[float] = []
+        observations = envs.reset()
+        while len(scores) < games:
+            actions, _ = model.predict(observations, deterministic=False)
+            observations, _, dones, infos = envs.step(actions)
+            scores += [learner_won(info) for done, info in zip(dones, infos) if done]
+        scores = scores[:games]
+        wins, draws = scores.count(1.0), scores.count(0.5)
+        low, high = wilson_interval(wins, games)
+        result[f"vs_{opponent}"] = {
+            "games": games, "wins": wins, "losses": games - wins - draws, "draws": draws,
+            "win_rate": wins / games, "wilson95": [low, high],
+        }  # fmt: skip
+        envs.close()
+    return result
+
+
 def describe(label: str, result: dict[str, Any]) -> str:
     low, high = result["wilson95"]
     return (
@@ -87,9 +121,11 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--init", help="start from this saved model (then self-play)")
     parser.add_argument("--quick", action="store_true", help="a smoke config and a few games")
     parser.add_argument("--selfplay", action="store_true", help="with --quick: the self-play path")
+    parser.add_argument("--pixels", action="store_true", help="with --quick: the pixel path")
     args = parser.parse_args(argv)
     if args.quick:
         args.config = "smoke_selfplay" if args.selfplay else "smoke"
+        args.config = "smoke_pixels" if args.pixels else args.config
         args.minutes, args.games, args.round_robin_games = 1.0, 4, 2
     config = load_train_config(args.config, init=args.init)
     args.out = args.out or Path("runs/recipe") / config.name
@@ -97,11 +133,16 @@ def main(argv: list[str] | None = None) -> int:
     # a benchmark starts over: its folder is its own
     model = train(config, args.out, progress=not args.quick, minutes=args.minutes, overwrite=True)
     trained = time.monotonic() - start
-    result = {
-        "config": config.name,
-        "train_minutes": trained / 60.0,
-        **measure(model, args.games, args.round_robin_games),
-    }
+    result: dict[str, Any] = {"config": config.name, "train_minutes": trained / 60.0}
+    if config.obs_type == "pixels":
+        result.update(measure_pixels(model, config, args.games))
+        atomic_write_text(args.out / "result.json", json.dumps(result, indent=2))
+        print(f"trained {config.name} for {trained / 60:.1f} min")
+        for opponent in ("idle", "random", "rush"):
+            print(describe(f"vs {opponent}", result[f"vs_{opponent}"]))
+        print(f"wrote {args.out / 'result.json'}")
+        return 0
+    result.update(measure(model, args.games, args.round_robin_games))
     atomic_write_text(args.out / "result.json", json.dumps(result, indent=2))
     print(f"trained {config.name} for {trained / 60:.1f} min")
     if "vs_first_snapshot" in result:

@@ -193,7 +193,8 @@ def test_a_seed_past_2_to_the_31_is_a_good_seed():
         (["--init", "nowhere.zip"], "init = 'nowhere.zip': no saved model at nowhere.zip"),
         (
             ["--config", "nope"],
-            "unknown training config 'nope'; known: default, rllib_selfplay, rllib_smoke, selfplay",
+            "unknown training config 'nope'; known: default, pixels, rllib_selfplay, rllib_smoke, "
+            "selfplay",
         ),
         (["--config", "missing.toml"], "cannot read training config file missing.toml"),
     ],

@@ -243,3 +243,45 @@ def test_resume_keeps_the_curriculums_recent_results(tmp_path):
     train(load_train_config(path), out, resume=True, progress=False)
     after = json.loads((out / "train_state.json").read_text())
     assert after["results"] == before["results"] and after["stage"] == before["stage"]
+
+
+def test_the_pixel_recipe_trains_a_cnn_on_stacked_images(tmp_path):
+    from bench import train_recipe
+
+    assert train_recipe.main(["--quick", "--pixels", "--out", str(tmp_path)]) == 0
+    result = json.loads((tmp_path / "result.json").read_text())
+    for opponent in ("idle", "random", "rush"):
+        vs = result[f"vs_{opponent}"]
+        assert vs["wins"] + vs["losses"] + vs["draws"] == vs["games"] == 4
+    from stable_baselines3 import PPO
+
+    model = PPO.load(tmp_path / "final.zip", device="cpu")
+    assert model.observation_space.shape == (2, 36, 36)  # two stacked 36x36 (SB3: channels first)
+    assert type(model.policy.features_extractor).__name__ == "NatureCNN"
+
+
+@pytest.mark.slow  # 15 minutes of training, then 300 games
+def test_the_pixel_recipe_beats_idle_and_random(tmp_path):
+    from bench import train_recipe
+
+    assert train_recipe.main(["--config", "pixels", "--games", "100", "--out", str(tmp_path)]) == 0
+    result = json.loads((tmp_path / "result.json").read_text())
+    assert result["vs_idle"]["win_rate"] >= 0.9 and result["vs_random"]["win_rate"] >= 0.9
+
+
+@pytest.mark.parametrize(
+    ("key", "value", "message"),
+    [
+        ("obs_type", "both", "obs_type = 'both' is not allowed: one of vector, pixels"),
+        ("pixel_size", [8, 8], r"pixel_size = \(8, 8\) is not allowed"),
+        ("frame_stack", 4, "frame_stack = 4 is not allowed: 1 with obs_type = 'vector'"),
+    ],
+)
+def test_bad_pixel_training_options_name_the_key(tmp_path, key, value, message):
+    path = tmp_path / "bad.toml"
+    text = f"{key} = {json.dumps(value)}\n"
+    if key == "pixel_size":
+        text = 'obs_type = "pixels"\n' + text
+    path.write_text(text)
+    with pytest.raises(ConfigError, match=message):
+        load_train_config(path)

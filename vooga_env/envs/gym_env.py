@@ -8,9 +8,11 @@ from typing import Any
 import gymnasium
 import numpy as np
 
+from vooga_env.envs.obs_space import observation_space
 from vooga_env.envs.parallel import AGENTS, FightParallelEnv
 from vooga_env.game.actions import action_index, check_seat
 from vooga_env.game.config import FightConfig
+from vooga_env.game.pixels import pixel_spec
 from vooga_env.policies import Policy, make_policy
 
 
@@ -22,8 +24,9 @@ class FightEnv(gymnasium.Env):
     `edge_guard`), a saved model path (.zip), an exported fighter (.npz), any callable
     `obs -> action`, or an object with SB3's `predict`. `seat`: 0 or 1 for the learner's side, or
     "random" to draw it each episode (the observations and actions are mirrored, so a policy plays
-    either side). Everything else goes to `FightParallelEnv`: `config`, `render_mode`, `reward_fn`,
-    `backend`, and config overrides.
+    either side). `obs_type` ("vector", "pixels" or "both"; `pixel_size`, `pixel_rgb`) as
+    FightParallelEnv's, for the learner: the opponent acts on the vectors. Everything else goes to
+    `FightParallelEnv`: `config`, `render_mode`, `reward_fn`, `backend`, and config overrides.
 
     Observations, actions, rewards and infos are the learner's, as in the parallel env;
     `info["seat"]`, `info["opponent"]` (its name) and `info["opponent_action"]` are added.
@@ -37,17 +40,22 @@ class FightEnv(gymnasium.Env):
         opponent: Any = "random",
         seat: int | str = 0,
         render_mode: str | None = None,
+        obs_type: str = "vector",
         **kwargs: Any,
     ) -> None:
         if seat != "random":
             seat = check_seat(seat, "0, 1 or 'random'")
-        self.fight_env = FightParallelEnv(config, render_mode=render_mode, **kwargs)
+        # the opponent acts on the vectors, so an env of images keeps both
+        inner = obs_type if obs_type == "vector" else "both"
+        pixel_spec(obs_type)  # an unknown obs_type is refused by its own name, not as "both"
+        self.obs_type = obs_type
+        self.fight_env = FightParallelEnv(config, render_mode=render_mode, obs_type=inner, **kwargs)
         self.metadata = self.fight_env.metadata
         self.render_mode = render_mode
         self.opponent: Policy = make_policy(opponent)
         self.seat_choice = seat
         self.seat = 0 if seat == "random" else seat
-        self.observation_space = self.fight_env.observation_space(AGENTS[0])
+        self.observation_space = observation_space(obs_type, self.fight_env.pixels)
         self.action_space = self.fight_env.action_space(AGENTS[0])
         self._opponent_observation: np.ndarray | None = None
 
@@ -75,8 +83,8 @@ class FightEnv(gymnasium.Env):
         self.opponent.reset(int(self.np_random.integers(2**31)))
         observations, infos = self.fight_env.reset(seed=fight_seed, options=options)
         me, them = AGENTS[self.seat], AGENTS[1 - self.seat]
-        self._opponent_observation = observations[them]
-        return observations[me], {**infos[me], "seat": self.seat}
+        self._opponent_observation = self._vector(observations[them])
+        return self._learner(observations[me]), {**infos[me], "seat": self.seat}
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         if self._opponent_observation is None:
@@ -86,14 +94,21 @@ class FightEnv(gymnasium.Env):
         observations, rewards, terminations, truncations, infos = self.fight_env.step(
             {me: action, them: opponent_action}
         )
-        self._opponent_observation = observations[them]
+        self._opponent_observation = self._vector(observations[them])
         info = {
             **infos[me],
             "seat": self.seat,
             "opponent": self.opponent.name,
             "opponent_action": opponent_action,
         }
-        return observations[me], rewards[me], terminations[me], truncations[me], info
+        return self._learner(observations[me]), rewards[me], terminations[me], truncations[me], info
+
+    def _learner(self, observation: Any) -> Any:
+        """The learner's observation as `obs_type` asks (the inner env gives "both")."""
+        return observation["pixels"] if self.obs_type == "pixels" else observation
+
+    def _vector(self, observation: Any) -> np.ndarray:
+        return observation if self.obs_type == "vector" else observation["vector"]
 
     def _opponent_action(self, seat: str) -> int:
         """The opponent's action; a bad one is blamed on the opponent, not on its seat."""

@@ -21,12 +21,13 @@ from gymnasium import spaces
 from gymnasium.vector import AutoresetMode
 from gymnasium.vector.utils import batch_space
 
+from vooga_env.envs.obs_space import observation_space
 from vooga_env.envs.render import frames_per_second
 from vooga_env.envs.spectator import Spectator
 from vooga_env.game.actions import Action, batch_actions, check_seat
 from vooga_env.game.config import FightConfig
-from vooga_env.game.observations import HIGH, LOW, OBSERVATION_SIZE
 from vooga_env.game.outcome import Outcome
+from vooga_env.game.pixels import pixel_spec
 from vooga_env.kernel.vector_fight import VectorFight
 from vooga_env.policies.batched import batch_opponent
 
@@ -45,8 +46,10 @@ _PER_FIGHTER = (
 
 class FightVectorEnv(gymnasium.vector.VectorEnv):
     """`num_envs` fights of one learner against `opponent` (a scripted fighter's name, or an
-    object with `act(observations (n, 41)) -> actions (n,)`). `render_mode="rgb_array"` draws
-    fight 0; `threads` as `VectorFight`'s; other keywords are config overrides."""
+    object with `act(observations (n, 41)) -> actions (n,)`, which acts on the vectors).
+    `obs_type` ("vector", "pixels", "both"; `pixel_size`, `pixel_rgb`) as FightParallelEnv's, for
+    the learner. `render_mode="rgb_array"` draws fight 0; `threads` as `VectorFight`'s; other
+    keywords are config overrides."""
 
     def __init__(
         self,
@@ -56,13 +59,17 @@ class FightVectorEnv(gymnasium.vector.VectorEnv):
         seat: int = 0,
         render_mode: str | None = None,
         threads: int = 1,
+        obs_type: str = "vector",
         **overrides: Any,
     ) -> None:
         self._spectator: Spectator | None = None  # first: gymnasium's __del__ closes it
         seat = check_seat(seat)
         if render_mode not in (None, "rgb_array"):
             raise ValueError(f"render_mode must be None or 'rgb_array', got {render_mode!r}")
-        self.fights = VectorFight(num_envs, config, threads=threads, **overrides)
+        pixel_spec(obs_type)  # an unknown obs_type is refused by its own name, not as "both"
+        self.obs_type = obs_type
+        inner = obs_type if obs_type == "vector" else "both"  # the opponent acts on the vectors
+        self.fights = VectorFight(num_envs, config, threads=threads, obs_type=inner, **overrides)
         self.num_envs = self.fights.num_fights
         self.opponent = batch_opponent(opponent)
         self.seat = seat
@@ -73,7 +80,7 @@ class FightVectorEnv(gymnasium.vector.VectorEnv):
             "render_fps": frames_per_second(self.fights.config),
         }
         self._spectator = Spectator(self.fights.config) if render_mode else None
-        self.single_observation_space = spaces.Box(LOW, HIGH, (OBSERVATION_SIZE,), np.float32)
+        self.single_observation_space = observation_space(obs_type, self.fights.pixels)
         self.single_action_space = spaces.Discrete(len(Action))
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
@@ -87,11 +94,12 @@ class FightVectorEnv(gymnasium.vector.VectorEnv):
             self.fights.seed(seed)
         if self._spectator is not None:
             self._spectator.reset(self.fights.state.rng.get_state(0))
-        self._observations = self.fights.reset()
+        observations = self.fights.reset()
+        self._observations = self._vectors(observations)
         reset_opponent = getattr(self.opponent, "reset", None)
         if reset_opponent is not None:  # an int seed reseeds the opponent too; a list does not
             reset_opponent(int(seed) if isinstance(seed, (int, np.integer)) else None)
-        return self._observations[:, self.seat], {}
+        return self._learner(observations), {}
 
     def step(self, actions: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict]:
         if self._observations is None:
@@ -106,9 +114,9 @@ class FightVectorEnv(gymnasium.vector.VectorEnv):
         observations, rewards, terminated, truncated, info = self.fights.step(pairs)
         if self._spectator is not None:
             self._spectator.step(int(pairs[0, 0]), int(pairs[0, 1]))
-        self._observations = observations
+        self._observations = self._vectors(observations)
         return (
-            observations[:, self.seat],
+            self._learner(observations),
             rewards[:, self.seat],
             terminated,
             truncated,
@@ -123,6 +131,17 @@ class FightVectorEnv(gymnasium.vector.VectorEnv):
         if self._spectator is not None:
             self._spectator.close()
 
+    def _learner(self, observations: Any) -> Any:
+        """The learner's seat of the batch's observations, as `obs_type` asks."""
+        if self.obs_type == "vector":
+            return observations[:, self.seat]
+        if self.obs_type == "pixels":
+            return observations["pixels"][:, self.seat]
+        return {key: value[:, self.seat] for key, value in observations.items()}
+
+    def _vectors(self, observations: Any) -> np.ndarray:
+        return observations if self.obs_type == "vector" else observations["vector"]
+
     def _infos(self, info: dict[str, Any]) -> dict[str, Any]:
         """The learner's events for every fight, and `final_obs`/`final_info` where one ended."""
         infos = {key: info[key][self.seat] for key in _PER_FIGHTER}
@@ -130,8 +149,9 @@ class FightVectorEnv(gymnasium.vector.VectorEnv):
         done[info["done_index"]] = True
         if done.any():
             final_obs = np.full(self.num_envs, None, dtype=object)
+            finals = self._learner(info["final_observation"])
             for row, fight in enumerate(info["done_index"].tolist()):
-                final_obs[fight] = info["final_observation"][row, self.seat]
+                final_obs[fight] = _row(finals, row)
             winner = np.full(self.num_envs, None, dtype=object)
             for fight in info["done_index"].tolist():
                 winner[fight] = Outcome(int(info["winner"][fight])).info
@@ -140,3 +160,10 @@ class FightVectorEnv(gymnasium.vector.VectorEnv):
             infos.update(final_obs=final_obs, _final_obs=done, final_info=final_info)
             infos["_final_info"] = done
         return infos
+
+
+def _row(observations: Any, row: int) -> Any:
+    """Row `row` of a batch of observations (an array, or a dict of arrays)."""
+    if isinstance(observations, dict):
+        return {key: value[row] for key, value in observations.items()}
+    return observations[row]

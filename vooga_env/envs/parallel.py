@@ -11,12 +11,14 @@ from gymnasium.utils import seeding
 from pettingzoo import ParallelEnv
 from pettingzoo.utils.env import AECEnv
 
+from vooga_env.envs.obs_space import observation_space
 from vooga_env.envs.render import LazyViewer, frames_per_second
 from vooga_env.game.actions import Action, action_index
 from vooga_env.game.config import FightConfig, load_config
 from vooga_env.game.fight import Fight
 from vooga_env.game.observations import HIGH, LOW, OBSERVATION_SIZE
 from vooga_env.game.outcome import INFO_KEYS, Outcome
+from vooga_env.game.pixels import compose, pixel_spec
 from vooga_env.game.rewards import RewardFn
 from vooga_env.kernel.backends import make_simulation
 
@@ -59,7 +61,11 @@ class FightParallelEnv(ParallelEnv):
     "rgb_array"), `reward_fn` (called with the fight and the step's events), `backend` ("auto",
     "engine" or "compiled": what steps the fight, see `vooga_env.kernel.backends`; every backend
     gives the same results bit for bit), and any config key as a keyword override: `max_cycles`,
-    `frame_skip`, `stocks`, or a table such as `physics={"gravity": 0.003}`.
+    `frame_skip`, `stocks`, or a table such as `physics={"gravity": 0.003}`. `obs_type`:
+    "vector" (the default, above), "pixels" (`Box(0, 255, (H, W), uint8)`, or (H, W, 3) with
+    `pixel_rgb=True`; `pixel_size=(H, W)`, default (84, 84); see `vooga_env.game.pixels` for
+    what is drawn) or "both" (a `Dict` of "vector" and "pixels"). Images are ego-centric like
+    the vectors: fighter_1's is flipped left-right.
 
     ## Version History
     v0: first release.
@@ -78,8 +84,13 @@ class FightParallelEnv(ParallelEnv):
         render_mode: str | None = None,
         reward_fn: RewardFn | None = None,
         backend: str = "auto",
+        obs_type: str = "vector",
+        pixel_size: tuple[int, int] = (84, 84),
+        pixel_rgb: bool = False,
         **overrides: Any,
     ) -> None:
+        self.obs_type = obs_type
+        self.pixels = pixel_spec(obs_type, pixel_size, pixel_rgb)
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(
                 f"render_mode must be one of {self.metadata['render_modes']} or None, "
@@ -92,14 +103,17 @@ class FightParallelEnv(ParallelEnv):
         self.agents: list[str] = []
         self.metadata = {**self.metadata, "render_fps": frames_per_second(self.config)}
         self._np_random, _ = seeding.np_random(None)
-        self._observation_space = spaces.Box(LOW, HIGH, (OBSERVATION_SIZE,), np.float32)
+        self._observation_space = observation_space(obs_type, self.pixels)
+        self._renderer = None
+        if self.pixels is not None:
+            self._renderer = self.simulation.pixel_renderer(self.pixels)
         self._action_space = spaces.Discrete(len(Action))
         self.state_space = spaces.Box(LOW, HIGH, (2 * OBSERVATION_SIZE,), np.float32)
         self._viewer = None
         if render_mode is not None:  # the simulation is then the engine's, see make_simulation
             self._viewer = LazyViewer(self.simulation, render_mode, frames_per_second(self.config))
 
-    def observation_space(self, agent: str) -> spaces.Box:
+    def observation_space(self, agent: str) -> spaces.Space:
         """The same object on every call (PettingZoo asks for that), held by this env alone."""
         self._check_agent(agent)
         return self._observation_space
@@ -115,7 +129,7 @@ class FightParallelEnv(ParallelEnv):
             if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
                 raise ValueError(f"seed must be a non-negative int or None, got {seed!r}")
             self._np_random, _ = seeding.np_random(int(seed))
-        both = self.simulation.reset(self._np_random)
+        both = self._observations(self.simulation.reset(self._np_random))
         self.agents = list(self.possible_agents)
         first, second = self.possible_agents
         observations = {first: both[0], second: both[1]}
@@ -133,6 +147,7 @@ class FightParallelEnv(ParallelEnv):
         both, rewards, terminated, truncated, winner, columns = self.simulation.step(
             *self._read_actions(actions)
         )
+        both = self._observations(both)
         first, second = self.possible_agents
         values_0, values_1 = zip(*columns)
         infos = {first: dict(zip(INFO_KEYS, values_0)), second: dict(zip(INFO_KEYS, values_1))}
@@ -184,6 +199,15 @@ class FightParallelEnv(ParallelEnv):
     def close(self) -> None:
         if self._viewer is not None:
             self._viewer.close()
+
+    def _observations(self, vectors: np.ndarray) -> Any:
+        """Both fighters' observations as `obs_type` asks, indexable by seat (0, 1)."""
+        if self._renderer is None:
+            return vectors
+        images = compose(self.obs_type, vectors, self._renderer.render(), self.pixels)
+        if self.obs_type == "pixels":
+            return images
+        return [{key: value[seat] for key, value in images.items()} for seat in (0, 1)]
 
     def _read_actions(self, actions: dict[str, Any]) -> tuple[int, int]:
         if type(actions) is dict and len(actions) == 2:  # the usual case, checked quickly

@@ -10,6 +10,11 @@ Two ways to fill the slots:
   (the observations are mirrored, so that matters only where a stage or the engine's order of
   the two fighters is not symmetric).
 
+`obs_type` ("vector", "pixels" or "both", with `pixel_size` and `pixel_rgb`) as the single env's:
+images (H, W, 1) uint8 per slot (grayscale with a channel axis, or (H, W, 3)), the shape
+`CnnPolicy` and `VecFrameStack` take, or a dict for `MultiInputPolicy`; opponents act on the
+vectors.
+
 SB3's conventions: `reset()` returns the observations only; `seed(seed)` seeds fight i with
 `seed + i` at the next `reset()`; a fight that ends is reset at once, and its slots' infos carry
 `terminal_observation`, `TimeLimit.truncated` (True when the time ran out), `winner` ("win",
@@ -36,11 +41,12 @@ import numpy as np
 from gymnasium import spaces
 from stable_baselines3.common.vec_env import VecEnv
 
+from vooga_env.envs.obs_space import observation_space
 from vooga_env.envs.spectator import Spectator
 from vooga_env.game.actions import Action, batch_actions, check_seat
 from vooga_env.game.config import FightConfig
-from vooga_env.game.observations import HIGH, LOW, OBSERVATION_SIZE
 from vooga_env.game.outcome import Outcome
+from vooga_env.game.pixels import pixel_spec
 from vooga_env.kernel.vector_fight import VectorFight
 from vooga_env.policies.batched import batch_opponent
 
@@ -61,6 +67,7 @@ class FightVecEnv(VecEnv):
         info_events: bool = False,
         render_mode: str | None = None,
         threads: int = 1,
+        obs_type: str = "vector",
         **overrides: Any,
     ) -> None:
         alternate = seat == "alternate"
@@ -68,7 +75,16 @@ class FightVecEnv(VecEnv):
             seat = check_seat(seat, "0, 1 or 'alternate'")
         if render_mode not in (None, "rgb_array"):
             raise ValueError(f"render_mode must be None or 'rgb_array', got {render_mode!r}")
-        self.fights = VectorFight(num_fights, config, backend=backend, threads=threads, **overrides)
+        pixel_spec(obs_type)  # an unknown obs_type is refused by its own name, not as "both"
+        self.obs_type = obs_type
+        self.fights = VectorFight(
+            num_fights,
+            config,
+            backend=backend,
+            threads=threads,
+            obs_type=obs_type if obs_type == "vector" else "both",  # opponents act on vectors
+            **overrides,
+        )
         self.render_mode = render_mode
         self._spectator = Spectator(self.fights.config) if render_mode else None
         self.opponent = None if opponent is None else batch_opponent(opponent, opponent_seed)
@@ -81,7 +97,7 @@ class FightVecEnv(VecEnv):
         slots = 2 * num_fights if self.self_play else num_fights
         super().__init__(
             slots,
-            spaces.Box(LOW, HIGH, (OBSERVATION_SIZE,), np.float32),
+            observation_space(obs_type, self.fights.pixels, channel_axis=True),
             spaces.Discrete(len(Action)),
         )
         self._fight_seeds: list[int] | None = None
@@ -115,7 +131,8 @@ class FightVecEnv(VecEnv):
             self.fights.seed(self._fight_seeds)  # None, the first time: from entropy
         if self._spectator is not None:
             self._spectator.reset(self.fights.state.rng.get_state(0))
-        observations = self.fights.reset()
+        everything = self.fights.reset()
+        observations = self._vectors(everything)
         self._fight_seeds = None
         self._returns[:] = 0.0
         self._lengths[:] = 0
@@ -124,7 +141,7 @@ class FightVecEnv(VecEnv):
         if self.opponent is not None and hasattr(self.opponent, "reset"):
             self.opponent.reset()
         self._observations = observations
-        return self._slots(observations)
+        return self._slots(everything)
 
     def step_async(self, actions: np.ndarray) -> None:
         actions = np.asarray(actions)
@@ -151,10 +168,10 @@ class FightVecEnv(VecEnv):
                 self.opponent.act(opponent_obs),
                 self.num_envs,
             )
-        observations, rewards, terminated, truncated, info = self.fights.step(pairs)
+        everything, rewards, terminated, truncated, info = self.fights.step(pairs)
         if self._spectator is not None:
             self._spectator.step(int(pairs[0, 0]), int(pairs[0, 1]))
-        self._observations = observations
+        self._observations = self._vectors(everything)
         self._actions = None
         if self.self_play:
             slot_rewards, done = rewards.reshape(-1), np.repeat(terminated | truncated, 2)
@@ -163,7 +180,7 @@ class FightVecEnv(VecEnv):
         self._returns += slot_rewards
         self._lengths += 1
         infos = self._infos(info, truncated)
-        return self._slots(observations), slot_rewards.astype(np.float32), done, infos
+        return self._slots(everything), slot_rewards.astype(np.float32), done, infos
 
     def render(self, mode: str | None = None) -> np.ndarray | None:
         """Fight 0's frame, (H, W, 3) uint8, when made with `render_mode="rgb_array"`."""
@@ -195,9 +212,15 @@ class FightVecEnv(VecEnv):
         return [self.render()] + [None] * (self.num_envs - 1)
 
     # --- helpers
-    def _slots(self, observations: np.ndarray) -> np.ndarray:
+    def _slots(self, observations: Any) -> Any:
+        """The batch's observations (N, 2, ...) as the slots', as `obs_type` asks."""
+        if isinstance(observations, dict):
+            observations = {**observations, "pixels": self._channels(observations["pixels"])}
+            if self.obs_type == "pixels":
+                return self._slots(observations["pixels"])
+            return {key: self._slots(value) for key, value in observations.items()}
         if self.self_play:
-            return observations.reshape(-1, OBSERVATION_SIZE)
+            return observations.reshape(-1, *observations.shape[2:])
         return observations[self._rows, self._seats]
 
     def _slot_seats(self, fight: int) -> list[tuple[int, int]]:
@@ -205,6 +228,9 @@ class FightVecEnv(VecEnv):
         if self.self_play:
             return [(2 * fight, 0), (2 * fight + 1, 1)]
         return [(fight, int(self._seats[fight]))]
+
+    def _vectors(self, observations: Any) -> np.ndarray:
+        return observations if self.obs_type == "vector" else observations["vector"]
 
     def _infos(self, info: dict, truncated: np.ndarray) -> list[dict[str, Any]]:
         """One dict per slot: the step's events, and at a fight's end the SB3 keys and winner."""
@@ -218,11 +244,12 @@ class FightVecEnv(VecEnv):
         else:
             infos = [{} for _ in range(self.num_envs)]
         elapsed = round(time.time() - self._start, 6)
+        finals = info["final_observation"]
         for row, fight in enumerate(info["done_index"].tolist()):
             winner = int(info["winner"][fight])
             for slot, seat in self._slot_seats(fight):
                 slot_info = infos[slot]
-                slot_info["terminal_observation"] = info["final_observation"][row, seat]
+                slot_info["terminal_observation"] = self._final(finals, row, seat)
                 slot_info["TimeLimit.truncated"] = bool(truncated[fight])
                 slot_info["winner"] = Outcome(winner).for_seat(seat)
                 slot_info["episode"] = {
@@ -233,6 +260,19 @@ class FightVecEnv(VecEnv):
                 self._returns[slot] = 0.0
                 self._lengths[slot] = 0
         return infos
+
+    def _final(self, finals: Any, row: int, seat: int) -> Any:
+        """One slot's last observation of an ended fight, as `obs_type` asks."""
+        if not isinstance(finals, dict):
+            return finals[row, seat]
+        images = self._channels(finals["pixels"][row, seat])
+        if self.obs_type == "pixels":
+            return images
+        return {"vector": finals["vector"][row, seat], "pixels": images}
+
+    def _channels(self, images: np.ndarray) -> np.ndarray:
+        """Grayscale images with a channel axis, (..., H, W, 1), as SB3 takes images."""
+        return images if self.fights.pixels.rgb else images[..., None]
 
     def __repr__(self) -> str:
         against = "self-play" if self.self_play else f"vs {self.opponent!r} (seat {self.seat})"

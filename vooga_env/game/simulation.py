@@ -26,6 +26,7 @@ from vooga_env.game.fight import Fight
 from vooga_env.game.formulas import time_out
 from vooga_env.game.observations import observe_both
 from vooga_env.game.outcome import Outcome
+from vooga_env.game.pixels import PixelRenderer, PixelSpec
 from vooga_env.game.rewards import HitAndRingOutReward, RewardFn
 
 StepResult = tuple[np.ndarray, list[float], bool, bool, int, tuple[list, ...]]
@@ -48,6 +49,10 @@ class Simulation(Protocol):
 
     def fighter_status(self) -> list[dict[str, Any]]:
         """Each fighter's top-left `x`, `y` (px), `health` and `stocks` now."""
+        ...
+
+    def pixel_renderer(self, spec: PixelSpec) -> Any:
+        """An object whose `render()` gives both fighters' images now, (2, H, W, C) uint8."""
         ...
 
 
@@ -108,6 +113,10 @@ class EngineSimulation:
             {"x": f.x, "y": f.y, "health": f.health, "stocks": f.stocks}
             for f in self.fight.fighters
         ]
+
+    def pixel_renderer(self, spec: PixelSpec) -> PixelRenderer:
+        """The numpy renderer of this fight (`vooga_env.game.pixels`)."""
+        return PixelRenderer(self.fight, spec)
 
 
 def _reward_pair(reward_fn: RewardFn, rewards: Any) -> list[float]:

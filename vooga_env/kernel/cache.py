@@ -25,6 +25,8 @@ SOURCES = (
     GAME / "actions.py",
     GAME / "outcome.py",
     GAME / "formulas.py",
+    GAME / "pixels.py",
+    GAME / "pixel_formulas.py",
     HERE.parent / "physics" / "formulas.py",
 )
 
@@ -76,3 +78,12 @@ def load_kernel() -> ModuleType:
     from vooga_env.kernel import compiled as kernel
 
     return kernel
+
+
+def load_raster() -> ModuleType:
+    """The pixel rasteriser's module (its own compiled entry, a few seconds to compile), any
+    stale cache dropped first."""
+    drop_stale_kernel_cache()
+    from vooga_env.kernel import raster
+
+    return raster

@@ -14,8 +14,9 @@ import numpy as np
 
 from vooga_env.game.config import FightConfig
 from vooga_env.game.observations import OBSERVATION_SIZE
+from vooga_env.game.pixels import PixelSpec
 from vooga_env.game.simulation import StepResult
-from vooga_env.kernel.cache import load_kernel
+from vooga_env.kernel.cache import load_kernel, load_raster
 from vooga_env.kernel.params import FightParams, check_supported
 from vooga_env.kernel.state import FightState, StepEvents
 
@@ -85,6 +86,10 @@ class CompiledSimulation:
         self.kernel.observe(self.state, out, self._index)
         return out[0]
 
+    def pixel_renderer(self, spec: PixelSpec) -> CompiledPixels:
+        """The numba rasteriser of this fight (`vooga_env.kernel.raster`)."""
+        return CompiledPixels(self, spec)
+
     def fighter_status(self) -> list[dict[str, Any]]:
         s = self.state
         return [
@@ -96,3 +101,19 @@ class CompiledSimulation:
             }
             for f in (0, 1)
         ]
+
+
+class CompiledPixels:
+    """Both fighters' images of a `CompiledSimulation`'s fight, drawn by the numba rasteriser."""
+
+    def __init__(self, simulation: CompiledSimulation, spec: PixelSpec) -> None:
+        self.simulation = simulation
+        self.spec = spec
+        self.raster = load_raster().Rasteriser(simulation.kernel.params, spec)
+
+    def render(self) -> np.ndarray:
+        """(2, H, W, C) uint8, a new array each call (frame stacks keep the old ones)."""
+        spec = self.spec
+        out = np.empty((1, 2, spec.height, spec.width, spec.channels), dtype=np.uint8)
+        self.raster.render(self.simulation.state, self.simulation._index, out)
+        return out[0]

@@ -13,7 +13,8 @@ from vooga_env.kernel.vector_fight import VectorFight
 
 
 def warm_up() -> float:
-    """Step one compiled fight and the batched engine on one and two threads; seconds."""
+    """Step one compiled fight and the batched engine on one and two threads, and draw one
+    fight's images; seconds."""
     start = time.perf_counter()
     fight = CompiledSimulation(load_config("default"))
     fight.reset(np.random.default_rng(0))
@@ -23,6 +24,7 @@ def warm_up() -> float:
         fights.reset(seed=0)
         fights.step(np.zeros((2, 2), dtype=np.int64))
         fights.advance(np.zeros((2, 2), dtype=np.int64))
+    VectorFight(1, obs_type="pixels").reset(seed=0)  # the rasteriser, its own entry
     return time.perf_counter() - start
 
 
