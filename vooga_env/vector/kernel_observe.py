@@ -12,7 +12,7 @@ import numba
 import numpy as np
 
 from vooga_env.observations import HIGH, HITSTUN_SCALE, LOW, VELOCITY_SCALE
-from vooga_env.vector.kernel_parts import F, _stack, _unmanaged, inline
+from vooga_env.vector.kernel_parts import F, _stack, _unmanaged, inline, stage
 from vooga_env.vector.layout import (
     KICK,
     OBS_BLOCKING,
@@ -100,7 +100,7 @@ def reach(p, s, i, f, m):
     return F.reaches(left, top, right, bottom, hx, hy, p.hitbox_w[m], p.hitbox_h[m])
 
 
-@inline
+@stage
 def fighter_features(p, s, out, i, f, position):
     """Fighter f's features (`FIGHTER_FEATURES`), into its own slots and its opponent's."""
     fl, it, fg = s.fl, s.it, s.fg
@@ -130,7 +130,7 @@ def fighter_features(p, s, out, i, f, position):
     _feature(out, i, f, OBS_KICK_REACH, _flag(reach(p, s, i, f, KICK)), False)
 
 
-@inline
+@stage
 def observe(p, s, out, i, position):
     """Both fighters' observations of fight i into out[i]; `position` (2, 2): scratch."""
     fl, width = s.fl, p.f_width
