@@ -27,10 +27,11 @@ from vooga_env.vector.layout import MAX_TERMS
 # time, measured), yet inlining numba's IR copies a callee's whole scope once per block of it,
 # which grows with the square of what it inlined itself: the step took minutes to compile.
 # - `stage`: the stages (and the formulas: `compiled`), each compiled once, then inlined by LLVM
-#   into the loop (`forceinline`: alwaysinline); no Python wrapper: only compiled code calls them.
-# - `inline`: numba-IR inlining where the IR stays small: the few-line helpers that get literal
-#   arguments (a compiled function would be compiled once per literal), the loops around the
-#   stages (kernel_step), and what puts scratch on the caller's stack.
+#   into the loop (`forceinline`: alwaysinline); no Python wrapper (a call from Python would
+#   crash): only compiled code calls them.
+# - `inline`: numba-IR inlining where the IR stays small: the few-line helpers (a compiled one
+#   would be compiled once per literal argument it gets), the loops around the stages
+#   (kernel_step), and what puts scratch on the caller's stack.
 # - `jit`: an entry point, or a call kept a call (`forceinline` is inherited from the caller
 #   unless set).
 jit = numba.njit(cache=True, nogil=True, forceinline=False)
@@ -264,7 +265,7 @@ def _fsum(terms, f, kind, axis, count, partials):
     return hi + 0.0
 
 
-@stage
+@inline
 def _mulhi(a, b):
     """High 64 bits of the 128-bit product of two uint64."""
     mask = np.uint64(0xFFFFFFFF)
@@ -275,7 +276,7 @@ def _mulhi(a, b):
     return p11 + (p01 >> np.uint64(32)) + (p10 >> np.uint64(32)) + (middle >> np.uint64(32))
 
 
-@stage
+@inline
 def _next_double(state_hi, state_lo, inc_hi, inc_lo, i):
     """PCG64's next double for stream i: `Generator.random()`, the top 53 bits of the XSL-RR
     output of the stepped LCG state (see rng.py)."""
