@@ -11,11 +11,11 @@ $(STAMP): pyproject.toml constraints.txt
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -c constraints.txt -e '.[dev,render,train,fast,rllib]'
-	$(BIN)/python -m vooga_env.vector.cache
+	$(BIN)/python -m vooga_env.kernel.warm_up
 	touch $(STAMP)
 
 demo: $(STAMP)
-	$(BIN)/python -m vooga_env.demo $(ARGS)
+	$(BIN)/python -m vooga_env.tools.demo $(ARGS)
 
 test: $(STAMP)
 	$(BIN)/python -m pytest $(ARGS)

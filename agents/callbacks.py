@@ -10,8 +10,8 @@ from typing import Any
 import numpy as np
 from stable_baselines3.common.callbacks import BaseCallback, CheckpointCallback
 
-from vooga_env.elo import START_RATING, update
-from vooga_env.models import FrozenPolicy, load_model
+from vooga_env.policies.models import FrozenPolicy, load_model
+from vooga_env.tools.elo import START_RATING, update
 
 from .checkpoints import CHECKPOINTS, atomic_write, check_finite, save_checkpoint
 from .train_config import CurriculumConfig, SelfPlayConfig

@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from vooga_env.files import atomic_write, atomic_write_text, fsync
+from vooga_env.tools.files import atomic_write, atomic_write_text, fsync
 
 STATE_FILE = "train_state.json"
 LATEST = "latest.zip"

@@ -11,10 +11,10 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-from vooga_env.config import ConfigError, FightConfig, load_config
-from vooga_env.files import atomic_write_text
-from vooga_env.match import EpisodeRecord
+from vooga_env.game.config import ConfigError, FightConfig, load_config
 from vooga_env.policies import SCRIPTED, Policy, make_policy
+from vooga_env.tools.files import atomic_write_text
+from vooga_env.tools.match import EpisodeRecord
 
 # pygame greets on stdout when imported; that would break --json output.
 os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")

@@ -5,8 +5,8 @@
 
 MODEL is a saved model (.zip), an exported fighter (.npz) or any scripted name. It plays
 `--episodes` games against every opponent, seats swapped each game; for the Elo the opponents also
-play each other (a round-robin, `vooga_env.elo`: K=16, start 1200, a draw scores 0.5). Draws count
-as non-wins in the win rate.
+play each other (a round-robin, `vooga_env.tools.elo`: K=16, start 1200, a draw scores 0.5).
+Draws count as non-wins in the win rate.
 """
 
 from __future__ import annotations
@@ -16,9 +16,9 @@ import sys
 from collections.abc import Sequence
 from typing import Any
 
-from vooga_env.elo import Tournament, round_robin
-from vooga_env.match import wilson_interval
 from vooga_env.policies import SCRIPTED
+from vooga_env.tools.elo import Tournament, round_robin
+from vooga_env.tools.match import wilson_interval
 
 from . import common, style_report
 from .tournament import format_tournament

@@ -3,14 +3,17 @@ scripted fighters and short-lived exploiters, each game's opponent drawn by PFSP
 
     python -m agents.league [--config default] [--out runs/NAME] [--seed N] [--minutes M]
     python -m agents.league --config smoke --out /tmp/league  # seconds
+    python -m agents.league --init runs/default/final.zip     # start from a trained model
 
 Config-driven (`configs/league/*.toml`; `[ppo]` as in agents.train, `[league]` below). The
-learner sits in seat 0 of `fights` batched fights (`FightVecEnv`, observations mirrored); fight
+learner sits in seat i % 2 of fight i of `fights` batched fights (`FightVecEnv`,
+`seat="alternate"`: both seats in every rollout, whatever the engine does in seat order); fight
 i's opponent is `PoolOpponent.assigned[i]`, drawn again from the pool at the end of each game
 (`agents.league_pool`: harder opponents more often). Every `save_steps` a snapshot of the
 learner joins the pool (the last `window` stay); every `exploiter_every` steps (0: never) a
 fresh learner trains `exploiter_steps` steps against the frozen learner alone
-(`agents.exploit.make_learner`) and joins the pool (the last `exploiters` stay). Checkpoints,
+(`agents.exploit.make_learner`) and joins the pool (the last `exploiters` stay). With
+`join_win_rate` the scripted fighters join one at a time, weak to strong. Checkpoints,
 `--resume`, Ctrl-C and `OUT/final.zip` work as in agents.train; the learner's Elo, the pool's
 size and the PFSP win rates are logged (TensorBoard when installed).
 """
@@ -34,12 +37,12 @@ from stable_baselines3.common.callbacks import BaseCallback
 from stable_baselines3.common.utils import set_random_seed
 from stable_baselines3.common.vec_env import VecNormalize
 
-from vooga_env.config import CONFIG_DIR, ConfigError, build_config, load_config, read_toml
-from vooga_env.files import atomic_write, atomic_write_text
-from vooga_env.models import BatchPolicy, FrozenPolicy, load_model
+from vooga_env.envs.sb3 import FightVecEnv
+from vooga_env.game.config import CONFIG_DIR, ConfigError, build_config, load_config, read_toml
 from vooga_env.policies import SCRIPTED
-from vooga_env.vector.opponents import VectorOpponent
-from vooga_env.vector.sb3 import FightVecEnv
+from vooga_env.policies.batched import VectorOpponent
+from vooga_env.policies.models import BatchPolicy, FrozenPolicy, load_model
+from vooga_env.tools.files import atomic_write, atomic_write_text
 
 from . import common
 from .checkpoints import (
@@ -56,7 +59,7 @@ from .checkpoints import (
 )
 from .exploit import make_learner
 from .league_pool import WEIGHTINGS, Pool, PoolOpponent
-from .train import learn_and_save
+from .train import learn_and_save, load_init, start_from
 from .train_config import PPOConfig
 
 
@@ -73,6 +76,10 @@ class LeagueConfig:
     exploiter_every: int = 0
     exploiter_steps: int = 200_000
     exploiters: int = 2  # exploiters kept in the pool
+    # 0: every scripted fighter is in the pool from the start. Above 0: they join one at a time,
+    # in the order of `scripted`, the next once the learner's mean score over the scripted
+    # members present (a full `results_window` of games each) reaches this.
+    join_win_rate: float = 0.0
 
     def __post_init__(self) -> None:
         for name in self.scripted:
@@ -85,6 +92,8 @@ class LeagueConfig:
                 raise ConfigError(f"{key} = {getattr(self, key)} is not allowed: must be > 0")
         if self.exploiter_every < 0:
             raise ConfigError(f"exploiter_every = {self.exploiter_every} is not allowed: >= 0")
+        if not 0.0 <= self.join_win_rate <= 1.0:
+            raise ConfigError(f"join_win_rate = {self.join_win_rate} is not allowed: in [0, 1]")
         if not 0.0 < self.floor <= 1.0:
             raise ConfigError(f"floor = {self.floor} is not allowed: in (0, 1]")
 
@@ -102,6 +111,7 @@ class LeagueRunConfig:
     ppo: PPOConfig = PPOConfig()
     league: LeagueConfig = LeagueConfig()
     name: str = "league"
+    init: str = ""  # a saved model (.zip) to start from; "": a new network
 
     def __post_init__(self) -> None:
         for key in ("total_timesteps", "fights", "checkpoint_every"):
@@ -132,9 +142,10 @@ class LeagueCallback(BaseCallback):
         self.pool = Pool(self.league.results_window, self.league.pfsp, self.league.floor)
         self.pool.ratings.update(state.get("ratings", {}))
         results = state.get("results", {})
-        for offset, name in enumerate(self.league.scripted):
-            member = VectorOpponent(name, config.seed + 10 + offset)
-            self.pool.add(name, member, results.get(name))
+        everyone = len(self.league.scripted) if not self.league.join_win_rate else 1
+        self.joined = 0
+        for _ in range(state.get("scripted_joined", everyone)):
+            self._join_scripted(results)
         self.snapshots: list[str] = []
         self.exploiters: list[str] = []
         for kind in ("snapshots", "exploiters"):
@@ -148,6 +159,23 @@ class LeagueCallback(BaseCallback):
         self.opponent = opponent
         opponent.assigned = [self.pool.draw(self.rng) for _ in opponent.assigned]
 
+    def _join_scripted(self, results: dict[str, list[float]]) -> None:
+        """Add the next scripted fighter of `scripted` to the pool."""
+        name = self.league.scripted[self.joined]
+        member = VectorOpponent(name, self.config.seed + 10 + self.joined)
+        self.pool.add(name, member, results.get(name))
+        self.joined += 1
+
+    def _ready_for_next(self) -> bool:
+        """Whether the learner beats the scripted members present well enough for another."""
+        if not self.league.join_win_rate or self.joined == len(self.league.scripted):
+            return False
+        present = self.league.scripted[: self.joined]
+        if any(len(self.pool.results[name]) < self.league.results_window for name in present):
+            return False
+        mean = np.mean([self.pool.win_rate(name) for name in present])
+        return bool(mean >= self.league.join_win_rate)
+
     def _on_step(self) -> bool:
         for slot in np.flatnonzero(self.locals["dones"]):
             winner = self.locals["infos"][slot].get("winner")
@@ -155,6 +183,8 @@ class LeagueCallback(BaseCallback):
                 score = {"win": 1.0, "draw": 0.5, "loss": 0.0}[winner]
                 self.pool.record(self.opponent.assigned[slot], score)
             self.opponent.assigned[slot] = self.pool.draw(self.rng)
+        if self._ready_for_next():
+            self._join_scripted({})
         if self.num_timesteps - self.last_save >= self.league.save_steps:
             self.snapshot(self.model, self.num_timesteps)
         every = self.league.exploiter_every
@@ -162,6 +192,7 @@ class LeagueCallback(BaseCallback):
             self._exploiter()
         self.logger.record("league/learner_elo", self.pool.ratings["learner"])
         self.logger.record("league/pool_size", len(self.pool.members))
+        self.logger.record("league/scripted_joined", self.joined)
         return True
 
     def _join(self, kind: str, name: str, results: list[float] | None = None) -> None:
@@ -195,7 +226,9 @@ class LeagueCallback(BaseCallback):
         """Train a fresh learner against the frozen learner's argmax play, then pool it."""
         target = BatchPolicy(FrozenPolicy(self.model, "learner", deterministic=True))
         fights = max(self.config.fights // 2, 1)
-        envs = FightVecEnv(fights, load_config(self.config.fight), opponent=target)
+        envs = FightVecEnv(
+            fights, load_config(self.config.fight), opponent=target, seat="alternate"
+        )
         seed = int(self.rng.integers(2**31))
         exploiter = make_learner(envs, seed)
         exploiter.learn(self.league.exploiter_steps)
@@ -210,16 +243,19 @@ class LeagueCallback(BaseCallback):
             **self.pool.state(),
             "snapshots": list(self.snapshots),
             "exploiters": list(self.exploiters),
+            "scripted_joined": self.joined,
             "last_save": self.last_save,
             "last_exploiter": self.last_exploiter,
         }
 
 
-def build(config: LeagueRunConfig, folder: Path, state: dict[str, Any], resume: bool):
-    """The envs, the learner (new or resumed) and the league callback."""
+def build(config: LeagueRunConfig, folder: Path, state: dict[str, Any], resume: bool, saved: Any):
+    """The envs, the learner (new, from `saved`'s weights, or resumed) and the league callback."""
     league = LeagueCallback(config, folder, state)
     opponent = PoolOpponent(league.pool, config.fights)  # assigned when the pool is full
-    envs: Any = FightVecEnv(config.fights, load_config(config.fight), opponent=opponent)
+    envs: Any = FightVecEnv(
+        config.fights, load_config(config.fight), opponent=opponent, seat="alternate"
+    )
     ppo = config.ppo
     if ppo.normalize_reward:
         envs = VecNormalize(envs, norm_obs=False, norm_reward=True, gamma=ppo.gamma)
@@ -239,6 +275,8 @@ def build(config: LeagueRunConfig, folder: Path, state: dict[str, Any], resume: 
             device="cpu",
             verbose=0,
         )
+        if saved is not None:
+            start_from(model, saved)
     if not league.snapshots:  # the untrained network is the first snapshot
         league.snapshot(model, model.num_timesteps)
     league.attach(opponent)
@@ -272,9 +310,10 @@ def train_league(
     """
     if resume and not folder.is_dir():
         raise FileNotFoundError(f"--resume: no run folder at {folder}")
+    saved = None if resume else load_init(config)
     with RunLock(folder):
         state = _prepare(folder, resume, overwrite, config)
-        return _run(config, folder, state, progress, minutes or config.minutes)
+        return _run(config, folder, state, saved, progress, minutes or config.minutes)
 
 
 def _prepare(
@@ -309,11 +348,16 @@ def _prepare(
 
 
 def _run(
-    config: LeagueRunConfig, folder: Path, state: dict[str, Any], progress: bool, minutes: float
+    config: LeagueRunConfig,
+    folder: Path,
+    state: dict[str, Any],
+    saved: Any,
+    progress: bool,
+    minutes: float,
 ) -> Path:
     torch.set_num_threads(1)
     set_random_seed(config.seed)
-    model, league = build(config, folder, state, bool(state))
+    model, league = build(config, folder, state, bool(state), saved)
     every = max(config.checkpoint_every // config.fights, 1)
     return learn_and_save(
         model, folder, league, every, config.total_timesteps, not state, progress, minutes
@@ -326,13 +370,16 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--out", type=Path, help="run folder (default runs/CONFIG)")
     parser.add_argument("--seed", type=int)
     parser.add_argument("--steps", type=int, help="total timesteps (overrides the config)")
+    parser.add_argument("--init", help="start from this saved model's weights (overrides)")
     parser.add_argument("--resume", action="store_true", help="continue from OUT/latest.zip")
     parser.add_argument("--overwrite", action="store_true", help="start over in a used OUT")
     parser.add_argument("--minutes", type=float, help="stop after this much wall time")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     args = parser.parse_args(argv)
     try:
-        config = load_league_config(args.config, seed=args.seed, total_timesteps=args.steps)
+        config = load_league_config(
+            args.config, seed=args.seed, total_timesteps=args.steps, init=args.init
+        )
     except ConfigError as error:
         parser.error(str(error))
     folder = args.out or Path("runs") / config.name

@@ -4,8 +4,10 @@ opponent drawn by prioritized fictitious self-play (PFSP) from the win rates the
 `PoolOpponent` is the batch opponent of a `FightVecEnv`: fight i plays `assigned[i]`, and
 `act(observations)` asks each member for its own rows only. `Pool.draw(rng)` picks a member
 with weight `f(p)` of the learner's recent win rate `p` against it: "squared" is AlphaStar's
-`(1 - p)^2` (hard opponents far more often), "linear" `1 - p`, "even" 1; every weight is at
-least `floor`, so that beaten opponents still come back now and then.
+`(1 - p)^2` (hard opponents far more often), "variance" `p (1 - p)` (AlphaStar's for opponents
+that are neither beaten nor out of reach: a curriculum, since a learner that loses every game
+learns nothing from it), "linear" `1 - p`, "even" 1; every weight is at least `floor`, so that
+beaten (and unbeaten) opponents still come back now and then.
 """
 
 from __future__ import annotations
@@ -15,9 +17,9 @@ from typing import Any
 
 import numpy as np
 
-from vooga_env.elo import START_RATING, update
+from vooga_env.tools.elo import START_RATING, update
 
-WEIGHTINGS = ("squared", "linear", "even")
+WEIGHTINGS = ("squared", "variance", "linear", "even")
 
 
 class Pool:
@@ -50,6 +52,8 @@ class Pool:
         p = np.array([self.win_rate(name) for name in self.members])
         if self.weighting == "squared":
             weight = (1.0 - p) ** 2
+        elif self.weighting == "variance":
+            weight = p * (1.0 - p)
         elif self.weighting == "linear":
             weight = 1.0 - p
         else:

@@ -16,9 +16,9 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from vooga_env.match import MatchResult, run_match
-from vooga_env.recording import check_writer, save_animation
-from vooga_env.replay import Replay, ReplayError, ReplayMismatch, play_back
+from vooga_env.tools.match import MatchResult, run_match
+from vooga_env.tools.recording import check_writer, save_animation
+from vooga_env.tools.replay import Replay, ReplayError, ReplayMismatch, play_back
 
 from . import common
 

@@ -8,7 +8,7 @@ match is best of --rounds rounds, of --stocks stocks each (default 3). The round
 each stock the config's time (`default`: 900 steps, 36 s at speed 1, so 108 s for 3 stocks)
 unless --max-cycles sets it. On the match's result screen R or Enter plays a new match.
 
-Every round is saved as a replay (the `vooga_env.replay` format; watch it again with
+Every round is saved as a replay (the `vooga_env.tools.replay` format; watch it again with
 `python -m agents.match --replay FILE --render`) in --replay-dir, by default runs/play/ under
 the current folder, named <date>-<time>-<opponent>-m<match>-r<round>.json; each path is printed
 as it is written. --no-replay saves nothing.
@@ -30,11 +30,11 @@ from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
-from vooga_env.config import ConfigError, FightConfig, load_config
-from vooga_env.match import EpisodeRecord
+from vooga_env.envs.render import HEADLESS_DRIVERS
+from vooga_env.game.config import ConfigError, FightConfig, load_config
 from vooga_env.policies import SCRIPTED
-from vooga_env.render import HEADLESS_DRIVERS
-from vooga_env.replay import Replay
+from vooga_env.tools.match import EpisodeRecord
+from vooga_env.tools.replay import Replay
 
 from . import common
 from .play_keys import HELP_TEXT

@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Collection, Sequence
 from typing import Any
 
-from vooga_env.actions import Action
+from vooga_env.game.actions import Action
 
 try:
     import pygame

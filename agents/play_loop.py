@@ -17,8 +17,8 @@ from typing import Any, Protocol
 
 import pygame
 
-from vooga_env.match import EpisodeRecord, episode_seeds
 from vooga_env.policies import Policy
+from vooga_env.tools.match import EpisodeRecord, episode_seeds
 
 from .play_keys import FIGHT_KEYS, NEXT_KEYS, PAUSE_KEYS, QUIT_KEYS, RESTART_KEYS, InputHandler
 

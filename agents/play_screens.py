@@ -8,7 +8,7 @@ from typing import Any
 
 import pygame
 
-from vooga_env.render import FIGHTER_COLOURS, TEXT, Viewer
+from vooga_env.envs.render import FIGHTER_COLOURS, TEXT, Viewer
 
 from .play_keys import CONTROL_HELP, FIGHT_HELP
 from .play_loop import Game, Phase

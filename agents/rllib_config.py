@@ -6,7 +6,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from vooga_env.config import ConfigError, build_config, read_toml
+from vooga_env.game.config import ConfigError, build_config, read_toml
 from vooga_env.policies import SCRIPTED
 
 from .train_config import TRAIN_DIR

@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from vooga_env.models import Layers, save_mlp
+from vooga_env.policies.models import Layers, save_mlp
 
 ACTIVATIONS = {"Tanh": "tanh", "ReLU": "relu"}
 

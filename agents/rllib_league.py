@@ -5,7 +5,7 @@ The pool is the scripted fighters (non-learning `ScriptedModule`s) plus frozen s
 draw each episode's opponent in the policy-mapping function (`LeagueMapping`) with weights the
 driver recomputes every iteration from the tracked win rates and pushes to them; an episode-end
 callback (`LeagueCallbacks`) reports the result of every game to the driver through RLlib's
-metrics. Ratings use the Elo constants of `vooga_env.elo`.
+metrics. Ratings use the Elo constants of `vooga_env.tools.elo`.
 """
 
 from __future__ import annotations
@@ -18,8 +18,8 @@ from typing import Any
 import numpy as np
 from ray.rllib.callbacks.callbacks import RLlibCallback
 
-from vooga_env.elo import K_FACTOR, START_RATING, expected_score
-from vooga_env.parallel import AGENTS
+from vooga_env.envs.parallel import AGENTS
+from vooga_env.tools.elo import K_FACTOR, START_RATING, expected_score
 
 from .rllib_config import LeagueConfig
 
@@ -27,29 +27,55 @@ MAIN = "main"
 """The module that learns."""
 FLOOR = 0.05
 """Every pool member keeps at least this (unnormalized) weight, so none is forgotten."""
+DRAW = "league_draw"
+"""The episode's `custom_data` key of its draw: (env runner, vector index, episode number)."""
 
 
 @dataclass(frozen=True)
 class LeagueMapping:
     """The agent-to-module mapping: `main` takes a seat drawn per episode, the other seat goes
-    to a pool member drawn with `weights`. Both agents of an episode map from the same draw
-    (seeded by the episode's id), so they always agree; picklable, to ship to env runners."""
+    to a pool member drawn with `weights`. Both agents of an episode map from the same draw,
+    seeded by the run's seed and the episode's `DRAW` key (set by `LeagueCallbacks`), so they
+    always agree and a run with the same seed draws the same; picklable, to ship to env
+    runners."""
 
     pool: tuple[str, ...]
     weights: tuple[float, ...]
     seed: int = 0
 
     def __call__(self, agent_id: str, episode: Any, **kwargs: Any) -> str:
-        rng = np.random.default_rng([self.seed, zlib.crc32(str(episode.id_).encode())])
+        rng = np.random.default_rng([self.seed, *self.key(episode)])
         main_seat = int(rng.integers(2))
         if agent_id == AGENTS[main_seat]:
             return MAIN
         return self.pool[int(rng.choice(len(self.pool), p=self.weights))]
 
+    @staticmethod
+    def key(episode: Any) -> tuple[int, ...]:
+        """The episode's draw key; without one, its id (a random uuid). RLlib asks for a
+        mapping it then discards while it cuts an episode, before the episode has `custom_data`
+        (`MultiAgentEpisode.__init__` evaluates `agent_module_ids.get(agent, mapping(...))`)."""
+        key = getattr(episode, "custom_data", {}).get(DRAW)
+        return tuple(key) if key is not None else (zlib.crc32(str(episode.id_).encode()),)
+
 
 class LeagueCallbacks(RLlibCallback):
     """Logs, per opponent, the games `main` played and the points it scored (win 1, draw 0.5),
     and, per Ray node, the env steps its env runners sampled (where did the sampling happen?)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.episodes: dict[int, int] = {}  # per vector index: episodes begun (one env runner)
+
+    def on_episode_created(
+        self, *, episode: Any, env_runner: Any = None, env_index: int = 0, **kwargs: Any
+    ) -> None:
+        """Key the episode's opponent draw by where and when it began instead of its id (a
+        uuid4, another in every run), so that a run with the same seed draws the same."""
+        number = self.episodes.get(env_index, 0)
+        self.episodes[env_index] = number + 1
+        runner = int(getattr(env_runner, "worker_index", 0) or 0)
+        episode.custom_data[DRAW] = (runner, env_index, number)
 
     def on_sample_end(self, *, samples: Any, metrics_logger: Any = None, **kwargs: Any) -> None:
         import ray

@@ -1,6 +1,6 @@
 """The style part of `agents.evaluate`: per opponent and per way of playing (a model's sampled
 actions and its argmax), the win/draw/loss with a Wilson interval, how the games ended, the
-action distribution, and punches and kicks attempted and landed (`vooga_env.style`)."""
+action distribution, and punches and kicks attempted and landed (`vooga_env.tools.style`)."""
 
 from __future__ import annotations
 
@@ -9,12 +9,12 @@ import copy
 from collections.abc import Callable
 from typing import Any
 
-from vooga_env.actions import Action
-from vooga_env.config import FightConfig
-from vooga_env.match import run_match
-from vooga_env.models import MLPPolicy
+from vooga_env.game.actions import Action
+from vooga_env.game.config import FightConfig
 from vooga_env.policies import Policy
-from vooga_env.style import ATTACKS, ENDINGS, StyleStats
+from vooga_env.policies.models import MLPPolicy
+from vooga_env.tools.match import run_match
+from vooga_env.tools.style import ATTACKS, ENDINGS, StyleStats
 
 from . import common
 

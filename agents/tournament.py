@@ -4,8 +4,8 @@
     python -m agents.tournament --models runs/ppo.zip runs/selfplay.zip --out runs/elo.json
 
 Every pair of entrants plays `--episodes` games, seats swapped each game. Ratings start at 1200
-and move by K=16 per game (a draw scores 0.5), ML-Agents' constants (`vooga_env.elo`). The table
-is printed and written to `--out` (JSON) with every pairing's match table.
+and move by K=16 per game (a draw scores 0.5), ML-Agents' constants (`vooga_env.tools.elo`).
+The table is printed and written to `--out` (JSON) with every pairing's match table.
 """
 
 from __future__ import annotations
@@ -14,8 +14,8 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from vooga_env.elo import DRAW_SCORE, Tournament, round_robin
 from vooga_env.policies import SCRIPTED
+from vooga_env.tools.elo import DRAW_SCORE, Tournament, round_robin
 
 from . import common
 

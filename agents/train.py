@@ -33,9 +33,9 @@ from stable_baselines3.common.env_util import make_vec_env
 from stable_baselines3.common.utils import set_random_seed
 from stable_baselines3.common.vec_env import DummyVecEnv, VecEnv, VecNormalize
 
-from vooga_env.config import ConfigError
-from vooga_env.gym_env import FightEnv
-from vooga_env.models import load_model
+from vooga_env.envs.gym_env import FightEnv
+from vooga_env.game.config import ConfigError
+from vooga_env.policies.models import load_model
 
 from .callbacks import CurriculumCallback, SelfPlayCallback, StateCheckpointCallback
 from .checkpoints import (

@@ -6,12 +6,19 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from vooga_env.config import CONFIG_DIR, ConfigError, build_config, load_config, read_toml
+from vooga_env.game.config import (
+    CONFIG_DIR,
+    SEED_MAX,
+    ConfigError,
+    build_config,
+    load_config,
+    overridden_source,
+    read_toml,
+)
 from vooga_env.policies import SCRIPTED
 
 TRAIN_DIR = CONFIG_DIR / "train"
 MODES = ("scripted", "selfplay")
-MAX_SEED = 2**32 - 1  # numpy's legacy seeding (SB3's set_random_seed) takes 0 .. 2**32 - 1
 
 
 def _refuse(key: str, value: Any, allowed: str) -> None:
@@ -153,8 +160,8 @@ class TrainConfig:
             _refuse(
                 "n_envs", self.n_envs, f"n_envs * ppo.n_steps ({self.ppo.n_steps}) must be >= 2"
             )
-        if not 0 <= self.seed <= MAX_SEED - self.n_envs:  # env i is seeded seed + i
-            _refuse("seed", self.seed, f"must be in 0 .. {MAX_SEED - self.n_envs}")
+        if not 0 <= self.seed <= SEED_MAX - self.n_envs:  # env i is seeded seed + i
+            _refuse("seed", self.seed, f"must be in 0 .. {SEED_MAX - self.n_envs}")
         if self.minutes < 0:
             _refuse("minutes", self.minutes, "must be >= 0 (0: no time budget)")
         try:
@@ -166,5 +173,6 @@ class TrainConfig:
 def load_train_config(config: str | Path, **overrides: Any) -> TrainConfig:
     """A TrainConfig from a name in configs/train/ or a .toml path, plus top-level overrides."""
     data, path = read_toml(config, TRAIN_DIR, "training config")
-    data.update({key: value for key, value in overrides.items() if value is not None})
-    return build_config(TrainConfig, data, str(path))
+    given = {key: value for key, value in overrides.items() if value is not None}
+    data.update(given)
+    return build_config(TrainConfig, data, overridden_source(path, given))

@@ -27,7 +27,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from vooga_env.config import ConfigError
+from vooga_env.game.config import ConfigError
 
 from .rllib_config import RLlibTrainConfig, load_rllib_config
 
@@ -35,23 +35,47 @@ CHECKPOINT = "checkpoint"
 STATE_FILE = "train_state.json"
 PROGRESS_FILE = "progress.jsonl"
 CONNECT_TIMEOUT_S = 3.0
+# An HTTP/2 client's opening (the preface, then an empty SETTINGS frame): a Ray head (gRPC)
+# answers it with a SETTINGS frame of its own at once.
+HTTP2_HELLO = b"PRI * HTTP/2.0\r\n\r\nSM\r\n\r\n" + bytes([0, 0, 0, 4, 0, 0, 0, 0, 0])
+HTTP2_SETTINGS = 4
 
 
 def check_address(address: str) -> None:
-    """Fail within seconds, naming it, when a cluster address does not answer (ray.init itself
-    keeps retrying: 2.60 was still at it after 150 s). "auto" and "local" are left to Ray."""
+    """Fail within seconds, naming it, when a cluster address does not answer as Ray does:
+    ray.init itself keeps retrying (2.60 was still at it after 150 s against a closed port, and
+    after 200 s against a port that accepts and stays silent). "auto" and "local" are left to
+    Ray."""
     if address in ("auto", "local"):
         return
     host, _, port = address.removeprefix("ray://").rpartition(":")
     if not host or not port.isdigit():
         raise ConfigError(f"--address {address!r} is not HOST:PORT (or ray://HOST:PORT, auto)")
     try:
-        socket.create_connection((host, int(port)), timeout=CONNECT_TIMEOUT_S).close()
+        reply = http2_reply(host, int(port))
     except OSError as error:
         raise ConnectionError(
-            f"--address {address}: no Ray cluster answers there ({error}); start one with "
-            "`ray start --head` or check the host and port"
+            f"--address {address}: no Ray cluster answers there ({error}); "
+            "start one with `ray start --head` or check the host and port"
         ) from None
+    if len(reply) < 4 or reply[3] != HTTP2_SETTINGS:
+        raise ConnectionError(
+            f"--address {address}: something answers there, but not as a Ray cluster does "
+            f"(gRPC; it sent {reply[:16]!r}); check the port (`ray start --head` prints it)"
+        )
+
+
+def http2_reply(host: str, port: int) -> bytes:
+    """The first bytes a server sends back to an HTTP/2 opening (b"" if it hangs up)."""
+    with socket.create_connection((host, port), timeout=CONNECT_TIMEOUT_S) as connection:
+        connection.sendall(HTTP2_HELLO)
+        reply = b""
+        while len(reply) < 4:
+            chunk = connection.recv(9)
+            if not chunk:
+                break
+            reply += chunk
+        return reply
 
 
 def needs(config: RLlibTrainConfig) -> dict[str, float]:
@@ -117,7 +141,7 @@ def algorithm_config(config: RLlibTrainConfig, league: Any) -> Any:
         specs[module_id] = network_spec(config)
     return (
         PPOConfig()
-        .environment(FightMultiAgentEnv, env_config={"fight": config.fight})
+        .environment(FightMultiAgentEnv, env_config={"fight": config.fight, "seed": config.seed})
         .env_runners(
             num_env_runners=config.env_runners,
             num_envs_per_env_runner=config.envs_per_runner,
@@ -221,8 +245,8 @@ def check_checkpoint(folder: Path) -> None:
     with its actions (an old checkpoint, or one of another game, is named with both sizes)."""
     from ray.rllib.core.rl_module.rl_module import RLModule
 
-    from vooga_env.actions import Action
-    from vooga_env.observations import OBSERVATION_SIZE
+    from vooga_env.game.actions import Action
+    from vooga_env.game.observations import OBSERVATION_SIZE
 
     from .rllib_league import MAIN
 
@@ -415,7 +439,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--config", default="rllib_selfplay", help="a configs/train name or path")
     parser.add_argument("--out", type=Path, help="run folder (default runs/CONFIG)")
-    parser.add_argument("--seed", type=int)
+    parser.add_argument("--seed", type=int, help="the same seed repeats a run (docs/rllib.md)")
     parser.add_argument("--iterations", type=int, help="training iterations (overrides)")
     parser.add_argument("--env-runners", type=int, help="env runner processes (overrides)")
     parser.add_argument("--envs-per-runner", type=int, help="fights each runner steps (overrides)")

@@ -6,10 +6,10 @@ down: `--batch` env steps an iteration, `--envs` fights per runner) and reports,
 but the first iteration: env steps/s = steps / sampling time, learner steps/s = steps / learner
 update time (both from RLlib's own timers), and the end-to-end rate; plus the env's share of a
 runner's step time (RLlib's env-step, module-inference and connector timers). SB3 runs PPO on
-`vooga_env.vector.sb3.FightVecEnv` (the batched engine) against a scripted fighter, with its
+`vooga_env.envs.sb3.FightVecEnv` (the batched engine) against a scripted fighter, with its
 rollout and training phases timed apart.
 
-    nice -n 10 python -m bench.rllib_scaling                 # ~3 minutes on 2 cores
+    nice -n 10 python -m bench.rllib_scaling                 # ~1 minute on 2 cores (load 4-5)
     nice -n 10 python -m bench.rllib_scaling --runners 0 2   # some rows only
 """
 
@@ -77,7 +77,7 @@ def sb3_row(envs: int, batch: int, iterations: int) -> dict:
     from stable_baselines3 import PPO
     from stable_baselines3.common.callbacks import BaseCallback
 
-    from vooga_env.vector.sb3 import FightVecEnv
+    from vooga_env.envs.sb3 import FightVecEnv
 
     class Phases(BaseCallback):
         """Times the rollouts; the rest of `learn` is training."""

@@ -3,10 +3,10 @@
 1. Single env steps/s: the PettingZoo ParallelEnv (both fighters acting at random; its default
    backend, and the physics engine's), the AEC env (one step = a full cycle, both fighters) and
    the single-agent Gymnasium env, each against `gymnasium.make("CartPole-v1").step`.
-2. The batched engine (`vooga_env.vector.VectorFight`) at N fights, env-steps/s (one env step of
+2. The batched engine (`vooga_env.kernel.VectorFight`) at N fights, env-steps/s (one env step of
    one fight counts once), against `gymnasium.make_vec("CartPole-v1", num_envs=N,
    vectorization_mode="vector_entry_point")`.
-3. PPO `learn()` steps/s through `vooga_env.vector.sb3.FightVecEnv` (self-play, 2 slots per fight;
+3. PPO `learn()` steps/s through `vooga_env.envs.sb3.FightVecEnv` (self-play, 2 slots per fight;
    and one learner against a scripted fighter) against PPO on CartPole (SB3's DummyVecEnv) with
    the same n_envs, n_steps and network (torch on one thread for both).
 4. Memory: the bytes of a 4096-fight batch's state arrays, and this process's peak RSS.
@@ -37,7 +37,7 @@ import gymnasium
 import numpy as np
 
 import vooga_env
-from vooga_env.vector import VectorFight
+from vooga_env.kernel import VectorFight
 
 SIZES = (1, 16, 256, 1024, 4096)
 
@@ -179,7 +179,7 @@ def ppo_rows(n_envs: int, n_steps: int, iterations: int, rounds: int) -> list[di
     import torch
     from stable_baselines3.common.env_util import make_vec_env
 
-    from vooga_env.vector.sb3 import FightVecEnv
+    from vooga_env.envs.sb3 import FightVecEnv
 
     threads = torch.get_num_threads()
     torch.set_num_threads(1)  # both alike; more threads only fight over a busy machine's cores

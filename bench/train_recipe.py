@@ -24,11 +24,11 @@ from typing import Any
 
 from agents.train import train
 from agents.train_config import load_train_config
-from vooga_env.elo import K_FACTOR, START_RATING, round_robin
-from vooga_env.files import atomic_write_text
-from vooga_env.match import MatchResult, run_match, wilson_interval
-from vooga_env.models import FrozenPolicy, load_model
 from vooga_env.policies import SCRIPTED
+from vooga_env.policies.models import FrozenPolicy, load_model
+from vooga_env.tools.elo import K_FACTOR, START_RATING, round_robin
+from vooga_env.tools.files import atomic_write_text
+from vooga_env.tools.match import MatchResult, run_match, wilson_interval
 
 
 def summary(match: MatchResult) -> dict[str, Any]:

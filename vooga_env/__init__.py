@@ -4,7 +4,9 @@
 - `gymnasium.make("vooga_env/Fight-v0", opponent="rush")`: one fighter against a scripted or saved
   opponent (variants: FightWater-v0, FightPlatforms-v0, FightSmall-v0); `gymnasium.make_vec(...,
   vectorization_mode="vector_entry_point")` gives the batched engine as a `VectorEnv`.
-- `vooga_env.physics`: the engine alone (no gymnasium or pettingzoo inside).
+- `vooga_env.physics`: the engine alone (no gymnasium or pettingzoo inside); `game` the fight's
+  rules on it, `kernel` the same rules compiled (`VectorFight`: N fights), `policies` the
+  fighters, `envs` the PettingZoo/Gymnasium/SB3 faces, `tools` matches, Elo, replays.
 
 The env names load on first use, so that `import vooga_env.physics` needs neither gymnasium nor
 pettingzoo; the Gymnasium ids are registered on `import vooga_env`.
@@ -15,7 +17,9 @@ from __future__ import annotations
 import importlib
 from typing import Any
 
-__version__ = "0.1.0"
+from vooga_env import moved
+
+__version__ = "0.2.0"
 
 GYM_IDS = {
     "vooga_env/Fight-v0": "default",
@@ -25,15 +29,15 @@ GYM_IDS = {
 }
 
 _LAZY = {
-    "Action": "vooga_env.actions",
-    "ConfigError": "vooga_env.config",
-    "FightConfig": "vooga_env.config",
-    "load_config": "vooga_env.config",
-    "FightParallelEnv": "vooga_env.parallel",
-    "env": "vooga_env.parallel",
-    "parallel_env": "vooga_env.parallel",
-    "raw_env": "vooga_env.parallel",
-    "FightEnv": "vooga_env.gym_env",
+    "Action": "vooga_env.game.actions",
+    "ConfigError": "vooga_env.game.config",
+    "FightConfig": "vooga_env.game.config",
+    "load_config": "vooga_env.game.config",
+    "FightParallelEnv": "vooga_env.envs.parallel",
+    "env": "vooga_env.envs.parallel",
+    "parallel_env": "vooga_env.envs.parallel",
+    "raw_env": "vooga_env.envs.parallel",
+    "FightEnv": "vooga_env.envs.gym_env",
 }
 
 
@@ -54,12 +58,13 @@ def _register() -> None:
         if env_id not in gymnasium.registry:
             gymnasium.register(
                 env_id,
-                entry_point="vooga_env.gym_env:FightEnv",
-                vector_entry_point="vooga_env.gym_vector:FightVectorEnv",
+                entry_point="vooga_env.envs.gym_env:FightEnv",
+                vector_entry_point="vooga_env.envs.gym_vector:FightVectorEnv",
                 kwargs={"config": config},
             )
 
 
+moved.install()
 _register()
 
 __all__ = ["GYM_IDS", *_LAZY]

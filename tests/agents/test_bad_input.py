@@ -11,8 +11,9 @@ import pytest
 import torch
 
 from agents import evaluate, match, tournament, train
-from vooga_env.actions import Action
-from vooga_env.observations import OBSERVATION_SIZE
+from agents.train_config import load_train_config
+from vooga_env.game.actions import Action
+from vooga_env.game.observations import OBSERVATION_SIZE
 
 SMOKE = 'fight = "small"\ntotal_timesteps = 512\nn_envs = 2\ncheckpoint_every = 256\n'
 PPO_SMOKE = "[ppo]\nn_steps = 128\nbatch_size = 128\nn_epochs = 1\n"
@@ -64,7 +65,8 @@ TRAIN_CONFIGS = [
     (SMOKE + '[curriculum]\nladder = ["rush+ninja"]\n', "'ninja' is not one of"),
     (SMOKE + "[curriculum]\nladder = []\n", "ladder = [] is not allowed"),
     (SMOKE + "seed = -1\n", "seed = -1 is not allowed: must be in 0 .."),
-    (SMOKE + "seed = 4294967295\n", "seed must be an integer in +-2147483647, got 4294967295"),
+    (SMOKE + "seed = 4294967295\n", "seed = 4294967295 is not allowed: must be in 0 .. 42949672"),
+    (SMOKE + "seed = 4294967296\n", "seed must be an integer in +-4294967295, got 4294967296"),
     (SMOKE + "minutes = -1\n", "minutes = -1.0 is not allowed: must be >= 0"),
     (SMOKE + "eval_games = 0\n", "eval_games = 0 is not allowed: must be >= 1"),
     (SMOKE + 'mode = "coop"\n', "mode = 'coop' is not allowed: one of scripted, selfplay"),
@@ -170,11 +172,15 @@ def test_a_model_training_cannot_start_from_is_a_usage_error(bad_models, name, m
     assert not out.exists()
 
 
+def test_a_seed_past_2_to_the_31_is_a_good_seed():
+    assert load_train_config("smoke", seed=3_000_000_000).seed == 3_000_000_000
+
+
 @pytest.mark.parametrize(
     "flags, message",
     [
         (["--seed", "-1"], "seed = -1 is not allowed: must be in 0 .."),
-        (["--seed", "4294967296"], "seed must be an integer in +-2147483647, got 4294967296"),
+        (["--seed", "4294967296"], "with seed = 4294967296: seed must be an integer in +-42949"),
         (["--seed", "one"], "--seed: invalid int value: 'one'"),
         (["--steps", "0"], "total_timesteps = 0 is not allowed: must be >= 1"),
         (["--steps", "-5"], "total_timesteps = -5 is not allowed"),

@@ -13,8 +13,8 @@ from stable_baselines3.common.vec_env import DummyVecEnv  # noqa: E402
 
 from agents.callbacks import CurriculumCallback  # noqa: E402
 from agents.train_config import CurriculumConfig  # noqa: E402
-from vooga_env.config import ConfigError  # noqa: E402
-from vooga_env.gym_env import FightEnv  # noqa: E402
+from vooga_env.envs.gym_env import FightEnv  # noqa: E402
+from vooga_env.game.config import ConfigError  # noqa: E402
 
 
 class Opponents(BaseCallback):

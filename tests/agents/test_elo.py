@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from vooga_env.elo import (
+from vooga_env.tools.elo import (
     DRAW_SCORE,
     K_FACTOR,
     START_RATING,

@@ -11,7 +11,7 @@ pytest.importorskip("stable_baselines3")
 from stable_baselines3 import PPO  # noqa: E402
 
 from agents import evaluate  # noqa: E402
-from vooga_env.vector.sb3 import FightVecEnv  # noqa: E402
+from vooga_env.envs.sb3 import FightVecEnv  # noqa: E402
 
 
 @pytest.fixture(scope="module")

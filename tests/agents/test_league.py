@@ -6,14 +6,15 @@ import json
 
 import numpy as np
 import pytest
+import torch
 
 pytest.importorskip("stable_baselines3")
 
-from agents.league import load_league_config, main, train_league  # noqa: E402
+from agents.league import LeagueCallback, load_league_config, main, train_league  # noqa: E402
 from agents.league_pool import Pool, PoolOpponent  # noqa: E402
-from vooga_env.config import ConfigError  # noqa: E402
-from vooga_env.models import load_model  # noqa: E402
-from vooga_env.vector.opponents import VectorOpponent, scripted_actions  # noqa: E402
+from vooga_env.game.config import ConfigError  # noqa: E402
+from vooga_env.policies.batched import VectorOpponent, scripted_actions  # noqa: E402
+from vooga_env.policies.models import load_model  # noqa: E402
 
 
 def test_pfsp_draws_the_opponent_the_learner_beats_least_far_more_often():
@@ -25,6 +26,10 @@ def test_pfsp_draws_the_opponent_the_learner_beats_least_far_more_often():
     hard = draws.count("hard") / len(draws)
     assert pool.weights() == pytest.approx([0.05 / 0.86, 0.81 / 0.86])  # (1-p)^2, floor 0.05
     assert 0.9 < hard < 0.97
+    variance = Pool(window=10, weighting="variance")
+    for name, p in (("beaten", 1.0), ("even", 0.5), ("out_of_reach", 0.0)):
+        variance.add(name, None, [p])
+    assert variance.weights() == pytest.approx([0.05 / 0.35, 0.25 / 0.35, 0.05 / 0.35])
     even = Pool(window=10, weighting="even")
     even.add("a", None, [1.0])
     even.add("b", None, [0.0])
@@ -72,6 +77,49 @@ def test_self_play_from_scratch_has_only_snapshots(tmp_path, capsys):
     assert "learner score %" in capsys.readouterr().out
     state = json.loads((tmp_path / "run" / "train_state.json").read_text())
     assert set(state["results"]) == {"snapshot_0", "snapshot_512", "snapshot_1024"}
+
+
+def test_scripted_fighters_join_in_order_once_the_learner_beats_those_present(tmp_path):
+    config = load_league_config(
+        "smoke",
+        league={"scripted": ["idle", "rush", "turtle"], "join_win_rate": 0.75, "results_window": 4},
+    )
+    league = LeagueCallback(config, tmp_path, {})
+    assert list(league.pool.members) == ["idle"]
+    for score in (1.0, 1.0, 0.0):
+        league.pool.record("idle", score)
+    assert not league._ready_for_next()  # three games of four: the window is not full yet
+    league.pool.record("idle", 1.0)
+    assert league._ready_for_next()  # 3 of 4 = 0.75
+    league._join_scripted({})
+    assert list(league.pool.members) == ["idle", "rush"]
+    for _ in range(4):
+        league.pool.record("rush", 0.5)
+    assert not league._ready_for_next()  # mean of 0.75 and 0.5
+    resumed = LeagueCallback(config, tmp_path, league.state())
+    assert list(resumed.pool.members) == ["idle", "rush"]
+    assert list(LeagueCallback(load_league_config("smoke"), tmp_path, {}).pool.members) == [
+        "rush",
+        "punisher",
+    ]  # join_win_rate = 0: all from the start
+
+
+def test_the_same_seed_trains_the_same_league_and_init_starts_from_a_model(tmp_path):
+    config = load_league_config("smoke", total_timesteps=2048)
+    first = load_model(train_league(config, tmp_path / "a", progress=False))
+    second = load_model(train_league(config, tmp_path / "b", progress=False))
+    for a, b in zip(first.policy.parameters(), second.policy.parameters(), strict=True):
+        assert torch.equal(a, b)
+    states = [json.loads((tmp_path / run / "train_state.json").read_text()) for run in "ab"]
+    assert states[0]["results"] == states[1]["results"]
+    assert states[0]["ratings"] == states[1]["ratings"]
+    started = load_league_config("smoke", total_timesteps=512, init=str(tmp_path / "a/final.zip"))
+    train_league(started, tmp_path / "c", progress=False)
+    zero = load_model(tmp_path / "c" / "snapshots" / "snapshot_0.zip")
+    for a, b in zip(first.policy.parameters(), zero.policy.parameters(), strict=True):
+        assert torch.equal(a, b)  # the first snapshot is the model it started from
+    with pytest.raises(ConfigError, match="init = 'nowhere.zip'"):
+        train_league(load_league_config("smoke", init="nowhere.zip"), tmp_path / "d")
 
 
 def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from vooga_env.match import episode_seeds, run_match, wilson_interval
+from vooga_env.tools.match import episode_seeds, run_match, wilson_interval
 
 
 def test_table_is_consistent_and_seats_alternate():

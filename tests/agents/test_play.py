@@ -20,10 +20,10 @@ from agents import play
 from agents.play_keys import InputHandler, action_from_keys
 from agents.play_loop import Game, Phase, PlaySettings, run
 from agents.play_screens import Screens
-from vooga_env.actions import Action
-from vooga_env.observations import OBSERVATION_NAMES
+from vooga_env.game.actions import Action
+from vooga_env.game.observations import OBSERVATION_NAMES
 from vooga_env.policies import make_policy
-from vooga_env.replay import Replay, play_back
+from vooga_env.tools.replay import Replay, play_back
 
 K = pygame
 FRAME_MS = 40  # the default config's env step: 2 frames of 20 ms, render_fps 25

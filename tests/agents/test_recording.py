@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from vooga_env.match import run_match
-from vooga_env.recording import save_animation
+from vooga_env.tools.match import run_match
+from vooga_env.tools.recording import save_animation
 
 
 @pytest.fixture(scope="module")

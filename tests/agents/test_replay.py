@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 import vooga_env
-from vooga_env.actions import Action
-from vooga_env.match import play_episode
+from vooga_env.game.actions import Action
 from vooga_env.policies import make_policy
-from vooga_env.replay import FORMAT, VERSION, Replay, ReplayError, ReplayMismatch, play_back
+from vooga_env.tools.match import play_episode
+from vooga_env.tools.replay import FORMAT, VERSION, Replay, ReplayError, ReplayMismatch, play_back
 
 # Spawn jitter makes the seed matter, and an override checks that the resolved config is stored.
 OVERRIDES = {"max_cycles": 150, "arena": {"spawn_jitter": 25.0}, "physics": {"gravity": 0.0025}}

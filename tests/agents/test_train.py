@@ -12,9 +12,9 @@ import pytest
 
 from agents.train import main, make_envs, train
 from agents.train_config import load_train_config
-from vooga_env.config import ConfigError
-from vooga_env.models import load_model
+from vooga_env.game.config import ConfigError
 from vooga_env.policies import SCRIPTED
+from vooga_env.policies.models import load_model
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -20,8 +20,8 @@ from agents import train as train_cli
 from agents.checkpoints import STATE_FILE, BrokenRun, Diverged, read_state, sha256
 from agents.train import build_model, make_envs, train
 from agents.train_config import load_train_config
-from vooga_env.config import ConfigError
-from vooga_env.models import load_model
+from vooga_env.game.config import ConfigError
+from vooga_env.policies.models import load_model
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -210,7 +210,7 @@ def test_a_diverged_model_is_not_saved_over_a_good_one(tmp_path):
 
 
 def test_a_write_that_fails_half_way_leaves_the_old_file_whole(tmp_path):
-    from vooga_env.files import atomic_write, atomic_write_text
+    from vooga_env.tools.files import atomic_write, atomic_write_text
 
     path = atomic_write_text(tmp_path / "report.json", "old, whole")
 

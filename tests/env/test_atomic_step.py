@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 import vooga_env
-from vooga_env.config import load_config
-from vooga_env.fight import Fight
+from vooga_env.game.config import load_config
+from vooga_env.game.fight import Fight
 from vooga_env.physics import CollisionKind, CollisionKindCustom
 
 

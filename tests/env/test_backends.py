@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 import vooga_env
+from vooga_env.game.rewards import HitAndRingOutReward
 from vooga_env.policies import make_policy
-from vooga_env.rewards import HitAndRingOutReward
 
 pytest.importorskip("numba")
 

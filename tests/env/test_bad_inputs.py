@@ -19,11 +19,11 @@ import numpy as np
 import pytest
 
 import vooga_env
-from vooga_env.config import ArenaConfig, ConfigError, FightConfig, PhysicsConfig, load_config
-from vooga_env.elo import EloTable, round_robin
-from vooga_env.fight import Fight
-from vooga_env.gym_env import FightEnv
-from vooga_env.match import run_match
+from vooga_env.envs.gym_env import FightEnv
+from vooga_env.game.config import ArenaConfig, ConfigError, FightConfig, PhysicsConfig, load_config
+from vooga_env.game.fight import Fight
+from vooga_env.kernel.params import UnsupportedConfig
+from vooga_env.kernel.vector_fight import VectorFight
 from vooga_env.physics import (
     FighterBody,
     FightPhysicsEngine,
@@ -34,8 +34,8 @@ from vooga_env.physics import (
     World,
 )
 from vooga_env.policies import make_policy
-from vooga_env.vector.engine import VectorFight
-from vooga_env.vector.params import UnsupportedConfig
+from vooga_env.tools.elo import EloTable, round_robin
+from vooga_env.tools.match import run_match
 
 NAN, INF = math.nan, math.inf
 OBS = np.zeros(41, dtype=np.float32)
@@ -136,7 +136,7 @@ class BatchOpponent:
 
 def vec_env(actions, **kwargs):
     def call():
-        from vooga_env.vector.sb3 import FightVecEnv
+        from vooga_env.envs.sb3 import FightVecEnv
 
         env = FightVecEnv(2, **kwargs)
         env.reset()
@@ -147,7 +147,7 @@ def vec_env(actions, **kwargs):
 
 def gym_vector(actions, **kwargs):
     def call():
-        from vooga_env.gym_vector import FightVectorEnv
+        from vooga_env.envs.gym_vector import FightVectorEnv
 
         env = FightVectorEnv(2, **{"opponent": "rush", **kwargs})
         env.reset(seed=0)
@@ -672,7 +672,7 @@ def test_the_checks_survive_python_dash_o():
     """No check is an `assert`: under `python -O` the same inputs get the same errors."""
     code = """
 import vooga_env
-from vooga_env.config import ConfigError
+from vooga_env.game.config import ConfigError
 aec = vooga_env.env(backend="engine")  # numba takes seconds to load
 for call, error in [
     (lambda: aec.step(0), RuntimeError),

@@ -14,7 +14,7 @@ from pettingzoo.test import (
 from stable_baselines3.common.env_checker import check_env as sb3_check_env
 
 import vooga_env
-from vooga_env import parallel as parallel_module
+from vooga_env.envs import parallel as parallel_module
 
 
 def test_parallel_api(backend):

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import vooga_env
-from vooga_env.config import ConfigError, load_config
+from vooga_env.game.config import ConfigError, load_config
 
 
 def test_unknown_config_key_names_file_and_key(tmp_path):

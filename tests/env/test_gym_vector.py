@@ -9,7 +9,7 @@ from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.wrappers.vector import RecordEpisodeStatistics
 
 import vooga_env
-from vooga_env.gym_vector import FightVectorEnv
+from vooga_env.envs.gym_vector import FightVectorEnv
 
 
 def make(num_envs: int, **kwargs):

@@ -5,7 +5,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import vooga_env
-from vooga_env.observations import observe
+from vooga_env.game.observations import observe
 
 # Dyadic values keep x' = width - x - w exact in floating point.
 coordinate = st.integers(0, 2000).map(lambda n: n / 4)

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import vooga_env
-from vooga_env.outcome import Outcome
+from vooga_env.game.outcome import Outcome
 
 
 def test_every_outcome_round_trips_through_its_info_string():
@@ -15,6 +15,16 @@ def test_every_outcome_round_trips_through_its_info_string():
     assert [outcome.over for outcome in Outcome] == [False, True, True, True]
     assert Outcome.of_leader(None) is Outcome.DRAW
     assert Outcome.of_leader(1) is Outcome.FIGHTER_1
+
+
+def test_each_seat_sees_the_mirror_result_and_a_going_on_fight_has_none():
+    mirror = {"win": "loss", "loss": "win", "draw": "draw"}
+    for outcome in (Outcome.DRAW, Outcome.FIGHTER_0, Outcome.FIGHTER_1):
+        assert mirror[outcome.for_seat(0)] == outcome.for_seat(1)
+    assert Outcome.FIGHTER_1.for_seat(1) == "win"
+    assert Outcome.DRAW.for_seat(0) == "draw"
+    with pytest.raises(ValueError, match="the fight goes on"):
+        Outcome.GOING_ON.for_seat(0)
 
 
 def test_an_unknown_winner_string_names_the_allowed_ones():

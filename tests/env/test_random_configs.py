@@ -14,7 +14,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import vooga_env
-from vooga_env.config import ConfigError, load_config
+from vooga_env.game.config import ConfigError, load_config
 
 from .test_backends import assert_same
 

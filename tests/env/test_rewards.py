@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import vooga_env
-from vooga_env.rewards import HitAndRingOutReward
+from vooga_env.game.rewards import HitAndRingOutReward
 
 
 def rollout(seed, **overrides):

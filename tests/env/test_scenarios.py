@@ -3,7 +3,7 @@
 import pytest
 
 import vooga_env
-from vooga_env.actions import Action
+from vooga_env.game.actions import Action
 
 PUNCH, KICK, BLOCK, IDLE = Action.PUNCH, Action.KICK, Action.BLOCK, Action.IDLE
 

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import vooga_env
-from vooga_env.actions import Action
+from vooga_env.game.actions import Action
 
 
 @pytest.mark.parametrize(("env_id", "config"), sorted(vooga_env.GYM_IDS.items()))

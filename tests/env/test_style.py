@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from vooga_env.match import run_match
-from vooga_env.style import StyleStats
+from vooga_env.tools.match import run_match
+from vooga_env.tools.style import StyleStats
 
 
 def styles(a: str, b: str, episodes: int, **overrides) -> tuple:

@@ -15,9 +15,9 @@ import numpy as np
 import vooga_env
 from vooga_env.agents.league import load_league_config
 from vooga_env.agents.train_config import load_train_config
-from vooga_env.config import load_config
-from vooga_env.vector import VectorFight
-from vooga_env.vector.sb3 import FightVecEnv
+from vooga_env.envs.sb3 import FightVecEnv
+from vooga_env.game.config import load_config
+from vooga_env.kernel import VectorFight
 
 site = Path(sys.argv[1]).resolve()
 assert Path(vooga_env.__file__).resolve().is_relative_to(site), vooga_env.__file__

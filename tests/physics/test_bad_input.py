@@ -85,6 +85,8 @@ def test_bad_sprite_arguments(build, error, argument, value):
         ("width", -1.0, ValueError, "-1.0"),
         ("height", NAN, ValueError, "nan"),
         ("speed", "fast", TypeError, "'fast'"),
+        ("increment_x", NAN, ValueError, "nan"),  # else update() would write it past x's check
+        ("increment_y", INF, ValueError, "inf"),
     ],
 )
 def test_bad_sprite_assignment(attribute, value, error, shown):

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 import vooga_env
-import vooga_env.outcome
+import vooga_env.game.outcome
 from vooga_env.policies import make_policy
 
 DATA = Path(__file__).resolve().parent / "data"
@@ -33,7 +33,9 @@ INFO_KEYS = (
     "rung_out",
     "knocked_out",
 )
-assert INFO_KEYS == vooga_env.outcome.INFO_KEYS, "the env's infos no longer match the recordings"
+assert INFO_KEYS == vooga_env.game.outcome.INFO_KEYS, (
+    "the env's infos no longer match the recordings"
+)
 WINNERS = {None: -1, "fighter_0": 0, "fighter_1": 1, "draw": 2}
 
 

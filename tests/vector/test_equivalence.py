@@ -8,9 +8,9 @@ import pytest
 
 import vooga_env
 from tests.vector.reference import INFO_KEYS, SCENARIOS, WINNERS, load, summary
-from vooga_env.outcome import Outcome
+from vooga_env.game.outcome import Outcome
+from vooga_env.kernel import VectorFight
 from vooga_env.policies import make_policy
-from vooga_env.vector import VectorFight
 
 STEPS = 2000  # the whole reference games
 # the references' winner codes (reference.WINNERS) as the batched engine's Outcome codes

@@ -14,9 +14,9 @@ from gymnasium.utils import seeding
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from vooga_env.vector import UnsupportedConfig, VectorFight
-from vooga_env.vector.kernel_parts import _fsum, _next_double
-from vooga_env.vector.rng import PCG64Streams
+from vooga_env.kernel import UnsupportedConfig, VectorFight
+from vooga_env.kernel.parts import _fsum, _next_double
+from vooga_env.kernel.rng import PCG64Streams
 
 REPO = Path(__file__).resolve().parents[2]
 floats = st.one_of(
@@ -144,7 +144,7 @@ def test_without_numba_the_batch_says_how_to_install_it():
     script = """
 import sys
 sys.modules["numba"] = None  # as if not installed
-from vooga_env.vector import VectorFight, numba_available
+from vooga_env.kernel import VectorFight, numba_available
 assert not numba_available()
 try:
     VectorFight(3)

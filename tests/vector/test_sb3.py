@@ -11,10 +11,10 @@ from stable_baselines3 import PPO  # noqa: E402
 from stable_baselines3.common.vec_env import VecCheckNan, VecMonitor  # noqa: E402
 
 import vooga_env  # noqa: E402
+from vooga_env.envs.sb3 import FightVecEnv  # noqa: E402
+from vooga_env.kernel import VectorFight  # noqa: E402
 from vooga_env.policies import make_policy  # noqa: E402
-from vooga_env.vector import VectorFight  # noqa: E402
-from vooga_env.vector.opponents import NAMES, scripted_actions  # noqa: E402
-from vooga_env.vector.sb3 import FightVecEnv  # noqa: E402
+from vooga_env.policies.batched import NAMES, scripted_actions  # noqa: E402
 
 
 @pytest.fixture
@@ -69,6 +69,30 @@ def test_same_seed_same_rollout_and_the_slots_are_the_batched_engines():
     env.seed(3)
     fights = VectorFight(2)
     assert np.array_equal(env.reset(), fights.reset(seed=3)[:, 1])
+
+
+def test_alternate_seats_put_fight_i_learner_in_seat_i_mod_2():
+    env = FightVecEnv(4, opponent="idle", seat="alternate", max_cycles=20, info_events=True)
+    env.seed(5)
+    seen = env.reset()
+    fights = VectorFight(4, max_cycles=20)
+    both = fights.reset(seed=5)
+    assert np.array_equal(seen, both[[0, 1, 2, 3], [0, 1, 0, 1]])
+    rng = np.random.default_rng(2)
+    for _ in range(25):  # the learner kicks, idle stands: rewards and outcomes are the learner's
+        actions = rng.integers(10, size=4)
+        pairs = np.zeros((4, 2), dtype=np.int64)
+        pairs[[0, 1, 2, 3], [0, 1, 0, 1]] = actions
+        observations, rewards, _, _, info = fights.step(pairs)
+        mine, got, dones, infos = env.step(actions)
+        assert np.array_equal(mine, observations[[0, 1, 2, 3], [0, 1, 0, 1]])
+        assert np.allclose(got, rewards[[0, 1, 2, 3], [0, 1, 0, 1]])
+        for slot in np.flatnonzero(dones):
+            winner, seat = int(info["winner"][slot]), slot % 2
+            expected = "draw" if winner < 0 else ("win" if winner == seat else "loss")
+            assert infos[slot]["winner"] == expected
+    with pytest.raises(ValueError, match="0, 1 or 'alternate'"):
+        FightVecEnv(2, opponent="idle", seat=2)
 
 
 def test_events_in_infos_on_request():

@@ -21,19 +21,19 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from vooga_env import formulas as fight_formulas
-from vooga_env.actions import Action
-from vooga_env.config import load_config, spawn_block
-from vooga_env.fight import Fight
-from vooga_env.observations import observe_both
+from vooga_env.game import formulas as fight_formulas
+from vooga_env.game.actions import Action
+from vooga_env.game.config import load_config, spawn_block
+from vooga_env.game.fight import Fight
+from vooga_env.game.observations import observe_both
+from vooga_env.kernel import stages
+from vooga_env.kernel.compiled import Kernel, kernel_arrays, state_blocks
+from vooga_env.kernel.layout import MOVES
+from vooga_env.kernel.params import FightParams
+from vooga_env.kernel.parts import F, params_record, scratch, state_record
+from vooga_env.kernel.state import FightState
+from vooga_env.kernel.state import StepEvents as BatchEvents
 from vooga_env.physics import formulas as physics_formulas
-from vooga_env.vector import stages
-from vooga_env.vector.kernel import Kernel, kernel_arrays, state_blocks
-from vooga_env.vector.kernel_parts import F, params_record, scratch, state_record
-from vooga_env.vector.layout import MOVES
-from vooga_env.vector.params import FightParams
-from vooga_env.vector.state import FightState
-from vooga_env.vector.state import StepEvents as BatchEvents
 
 CONFIGS = ("default", "platforms", "water")
 FORMULAS = [

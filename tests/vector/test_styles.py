@@ -1,13 +1,13 @@
 """The scripted styles (aerial, punisher, spacer, edge_grappler, mixup): competent, registered,
-and quick to play on the batched engine (`vooga_env.vector.matches.batch_match`)."""
+and quick to play on the batched engine (`vooga_env.tools.batch_match.batch_match`)."""
 
 from __future__ import annotations
 
 import pytest
 
-from vooga_env.match import run_match
 from vooga_env.policies import SCRIPTED
-from vooga_env.vector.matches import batch_match
+from vooga_env.tools.batch_match import batch_match
+from vooga_env.tools.match import run_match
 
 STYLES = ("aerial", "punisher", "spacer", "edge_grappler", "mixup")
 

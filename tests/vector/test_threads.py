@@ -12,7 +12,7 @@ pytest.importorskip("torch")
 SCRIPT = """
 import numpy as np, torch
 torch.set_num_threads(1)
-from vooga_env.vector import VectorFight
+from vooga_env.kernel import VectorFight
 for threads in (1, 2):
     fights = VectorFight(64, threads=threads)
     fights.reset(seed=0)

@@ -1,5 +1,5 @@
 """The engine's float formulas, written once: the physics engine calls them, the compiled kernel
-compiles them (`vooga_env.vector.kernel_parts.compiled`), so both do the same arithmetic by
+compiles them (`vooga_env.kernel.parts.compiled`), so both do the same arithmetic by
 construction and only the bookkeeping around them is written twice.
 
 Plain Python over floats (px, ms, px/ms) and `math`: no objects, no numpy, no numba. A formula

@@ -40,6 +40,8 @@ class SpriteTemplate:
     mass = Checked(validation.mass)
     speed = Checked(validation.non_negative)
     gravity_scale = Checked(validation.finite)
+    increment_x = Checked(validation.finite)
+    increment_y = Checked(validation.finite)
 
     def __init__(
         self,
@@ -107,7 +109,7 @@ class SpriteTemplate:
         else:
             state["x"] = self.x + self.increment_x
             state["y"] = self.y + self.increment_y
-        self.increment_x = self.increment_y = 0.0
+        state["increment_x"] = state["increment_y"] = 0.0
         self.status.reset()
 
     def __repr__(self) -> str:

@@ -2,11 +2,21 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import Protocol
 
-if TYPE_CHECKING:
-    from vooga_env.physics.contact import Contact
-    from vooga_env.physics.sprites import SpriteTemplate
+
+class Partner(Protocol):
+    """What a status reads of the sprite on the other side of a contact."""
+
+    movable: bool
+
+
+class EdgeContact(Protocol):
+    """What a status reads of a contact: `physics.contact.Contact` is one. Protocols rather than
+    imports, so that status sits below the sprites and contacts that hold and make statuses."""
+
+    edge: str
+    other: Partner
 
 
 class CollisionStatus:
@@ -21,7 +31,7 @@ class CollisionStatus:
     __slots__ = ("left", "right", "up", "down", "on_ground", "contacts")
 
     def __init__(self) -> None:
-        self.contacts: dict[SpriteTemplate, Contact] = {}
+        self.contacts: dict[Partner, EdgeContact] = {}
         self.reset()
 
     def reset(self) -> None:
@@ -34,7 +44,7 @@ class CollisionStatus:
         """True when any edge touched something this frame."""
         return self.left or self.right or self.up or self.down
 
-    def record(self, contact: Contact) -> None:
+    def record(self, contact: EdgeContact) -> None:
         """Flag the edge `contact` touched and remember the contact under its partner."""
         setattr(self, contact.edge, True)
         self.contacts[contact.other] = contact

@@ -1,9 +1,12 @@
-"""Shared by the RLlib tests: a local Ray whose files live under the test's tmp folder, and a
-check that no Ray process outlives its test."""
+"""Shared by the RLlib tests: one simulated two-node Ray cluster for the whole folder (its files
+under the test's tmp folder, no Ray process left when it stops), and the smoke run on it."""
 
 import os
+import shutil
 import time
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -30,16 +33,60 @@ def assert_no_ray_left(temp_dir: Path) -> None:
     assert ray_processes(temp_dir) == []
 
 
-@pytest.fixture(scope="module")
-def local_ray(tmp_path_factory):
-    """One local Ray (2 CPUs) for this module's tests; its files under the test's tmp folder."""
+@dataclass(frozen=True)
+class RayCluster:
+    temp_dir: Path
+    node_ids: frozenset[str]
+
+
+@pytest.fixture(scope="package")
+def ray_cluster(tmp_path_factory):
+    """Two Ray nodes of one CPU each in this process (`ray.cluster_utils.Cluster`), shared by
+    every test here: starting Ray is most of what a test on it costs."""
     ray = pytest.importorskip("ray")
-    temp_dir = tmp_path_factory.mktemp("ray")
-    ray.init(num_cpus=2, include_dashboard=False, _temp_dir=str(temp_dir), logging_level="ERROR")
-    assert ray_processes(temp_dir), "Ray's processes name their temp dir: the check below can fail"
-    yield temp_dir
-    ray.shutdown()
+    from ray.cluster_utils import Cluster
+
+    temp_dir = tmp_path_factory.mktemp("ray")  # short: Ray's socket paths must fit 107 bytes
+    (temp_dir / "ray").mkdir()
+    node = {"num_cpus": 1, "temp_dir": str(temp_dir / "ray"), "include_dashboard": False}
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setenv("RAY_TMPDIR", str(temp_dir))  # where Cluster writes its address file
+        cluster = Cluster()
+        try:
+            cluster.add_node(**node, no_monitor=True)  # the head; no autoscaler to run
+            cluster.add_node(**node)
+            ray.init(address=cluster.address, logging_level="ERROR")
+            assert ray_processes(temp_dir), "Ray's processes name their temp dir: the check fails"
+            alive = frozenset(n["NodeID"] for n in ray.nodes() if n["Alive"])
+            assert len(alive) == 2
+            yield RayCluster(temp_dir, alive)
+        finally:
+            ray.shutdown()
+            cluster.shutdown()
     assert_no_ray_left(temp_dir)
+
+
+@dataclass(frozen=True)
+class SmokeRun:
+    folder: Path
+    first: dict[str, Any]  # iteration 1: an env runner on each node
+    second: dict[str, Any]  # iteration 2, resumed in the driver (0 env runners)
+    first_fighter: Path  # main.npz after iteration 1
+
+
+@pytest.fixture(scope="package")
+def smoke_run(ray_cluster, tmp_path_factory):
+    """Iteration 1 with an env runner on each node, then `--resume` for iteration 2 with the
+    driver sampling: the checkpoint the cluster wrote must load into another layout."""
+    from agents.rllib_config import load_rllib_config
+    from agents.train_rllib import train
+
+    folder = tmp_path_factory.mktemp("smoke")
+    on_both = load_rllib_config("rllib_smoke", iterations=1, env_runners=2, envs_per_runner=1)
+    first = train(on_both, folder, echo=False)
+    first_fighter = shutil.copy(folder / "main.npz", folder.parent / "main_iteration_1.npz")
+    second = train(load_rllib_config("rllib_smoke", iterations=2), folder, resume=True, echo=False)
+    return SmokeRun(folder, first, second, Path(first_fighter))
 
 
 @pytest.fixture

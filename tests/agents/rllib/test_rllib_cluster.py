@@ -1,5 +1,6 @@
-"""A simulated two-node Ray cluster in-process: env runners on both nodes sample, the run's
-checkpoint loads, and no Ray process is left. Skipped without the `rllib` extra."""
+"""A simulated two-node Ray cluster in-process (`conftest.ray_cluster`): env runners on both
+nodes sample, the run's checkpoint loads, and no Ray process is left (the fixture's teardown).
+Skipped without the `rllib` extra."""
 
 import numpy as np
 import pytest
@@ -8,31 +9,28 @@ ray = pytest.importorskip("ray")
 pytest.importorskip("ray.rllib")
 
 from agents.rllib_config import load_rllib_config  # noqa: E402
-from agents.rllib_export import export_checkpoint  # noqa: E402
-from agents.train_rllib import CHECKPOINT, train  # noqa: E402
-from vooga_env.observations import OBSERVATION_SIZE  # noqa: E402
+from agents.train_rllib import train  # noqa: E402
+from vooga_env.game.observations import OBSERVATION_SIZE  # noqa: E402
 from vooga_env.policies import make_policy  # noqa: E402
+from vooga_env.policies.models import load_mlp  # noqa: E402
 
 
-@pytest.mark.slow  # 25-40 s on 2 shared cores: two raylets, two env-runner processes
-def test_two_node_cluster_samples_on_both_nodes(tmp_path_factory, tmp_path, no_ray_left):
-    from ray.cluster_utils import Cluster
+def test_env_runners_on_both_nodes_sample_and_the_checkpoint_loads(ray_cluster, smoke_run):
+    first, second = smoke_run.first, smoke_run.second
+    assert set(first["nodes"]) == ray_cluster.node_ids
+    assert all(steps > 0 for steps in first["nodes"].values())
+    assert second["iteration"] == 2  # restored from the cluster's checkpoint, then trained on
+    assert make_policy(smoke_run.first_fighter).act(np.zeros(OBSERVATION_SIZE)) in range(10)
 
-    temp_dir = tmp_path_factory.mktemp("cluster")
-    node = {"num_cpus": 1, "temp_dir": str(temp_dir), "include_dashboard": False}
-    cluster = Cluster(initialize_head=True, head_node_args=node)
-    try:
-        cluster.add_node(**node)
-        ray.init(address=cluster.address, logging_level="ERROR")
-        node_ids = {n["NodeID"] for n in ray.nodes() if n["Alive"]}
-        assert len(node_ids) == 2
-        config = load_rllib_config("rllib_smoke", iterations=1, env_runners=2, envs_per_runner=1)
-        state = train(config, tmp_path, echo=False)
-    finally:
-        ray.shutdown()
-        cluster.shutdown()
-    assert set(state["nodes"]) == node_ids
-    assert all(steps > 0 for steps in state["nodes"].values())
-    path = export_checkpoint(tmp_path / CHECKPOINT, "main", tmp_path / "main_from_checkpoint.npz")
-    assert make_policy(path).act(np.zeros(OBSERVATION_SIZE)) in range(10)
-    no_ray_left(temp_dir)
+
+@pytest.mark.slow  # ~25 s on 2 shared cores: two more env-runner processes
+def test_a_two_node_run_repeats_with_the_same_seed(ray_cluster, smoke_run, tmp_path):
+    """The remote env runners' samples and the opponent draws repeat too (docs/rllib.md says
+    what RLlib does not guarantee: a runner past `sample_timeout_s`, a restarted runner)."""
+    config = load_rllib_config("rllib_smoke", iterations=1, env_runners=2, envs_per_runner=1)
+    again = train(config, tmp_path, echo=False)
+    assert again["league"] == smoke_run.first["league"]
+    assert again["nodes"] == smoke_run.first["nodes"]
+    expected, got = load_mlp(smoke_run.first_fighter), load_mlp(tmp_path / "main.npz")
+    observations = np.random.default_rng(0).uniform(-2, 2, (64, OBSERVATION_SIZE))
+    assert np.array_equal(expected.logits(observations), got.logits(observations))

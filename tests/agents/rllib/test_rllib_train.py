@@ -1,12 +1,15 @@
-"""RLlib self-play on a local Ray: train, resume, export, play; clear errors for bad input.
-Skipped without the `rllib` extra."""
+"""RLlib self-play on the tests' Ray (conftest): train, resume, export, play; clear errors for
+bad input. Skipped without the `rllib` extra."""
 
+import contextlib
 import json
 import os
 import shutil
 import signal
+import socket
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 from typing import Any
@@ -17,30 +20,22 @@ import pytest
 ray = pytest.importorskip("ray")
 pytest.importorskip("ray.rllib")
 
+from agents import train_rllib  # noqa: E402
 from agents.rllib_config import load_rllib_config  # noqa: E402
 from agents.rllib_export import export_checkpoint  # noqa: E402
 from agents.train_rllib import CHECKPOINT, check_address, connect, main, train  # noqa: E402
-from vooga_env.config import ConfigError  # noqa: E402
-from vooga_env.gym_env import FightEnv  # noqa: E402
-from vooga_env.match import run_match  # noqa: E402
-from vooga_env.models import load_mlp, save_mlp  # noqa: E402
-from vooga_env.observations import OBSERVATION_SIZE  # noqa: E402
+from vooga_env.envs.gym_env import FightEnv  # noqa: E402
+from vooga_env.game.config import ConfigError  # noqa: E402
+from vooga_env.game.observations import OBSERVATION_SIZE  # noqa: E402
 from vooga_env.policies import make_policy  # noqa: E402
+from vooga_env.policies.models import load_mlp, save_mlp  # noqa: E402
+from vooga_env.tools.match import run_match  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[3]
 
 
-@pytest.fixture(scope="module")
-def smoke_run(local_ray, tmp_path_factory):
-    """One iteration, then a resume for a second: the run folder and both final states."""
-    folder = tmp_path_factory.mktemp("smoke")
-    first = train(load_rllib_config("rllib_smoke", iterations=1), folder, echo=False)
-    second = train(load_rllib_config("rllib_smoke", iterations=2), folder, resume=True, echo=False)
-    return folder, first, second
-
-
 def test_smoke_trains_resumes_and_logs_the_league(smoke_run):
-    folder, first, second = smoke_run
+    folder, first, second = smoke_run.folder, smoke_run.first, smoke_run.second
     config = load_rllib_config("rllib_smoke")
     assert first["iteration"] == 1
     assert first["league"]["snapshots"] == ["main_v1"]  # snapshot_every = 1
@@ -55,7 +50,7 @@ def test_smoke_trains_resumes_and_logs_the_league(smoke_run):
 
 
 def test_the_exported_fighter_plays_matches_and_the_gym_env(smoke_run):
-    folder, _, _ = smoke_run
+    folder = smoke_run.folder
     fighter = make_policy(folder / "main.npz")
     result = run_match(fighter, "rush", episodes=2, config="small", seed=0)
     assert result.games == 2
@@ -69,7 +64,7 @@ def test_export_gives_the_modules_own_logits(smoke_run, tmp_path):
     from ray.rllib.core.columns import Columns
     from ray.rllib.core.rl_module.rl_module import RLModule
 
-    folder, _, _ = smoke_run
+    folder = smoke_run.folder
     path = export_checkpoint(folder / CHECKPOINT, "main_v2", tmp_path / "exported.npz")
     module = RLModule.from_checkpoint(
         folder / CHECKPOINT / "learner_group" / "learner" / "rl_module" / "main_v2"
@@ -85,13 +80,13 @@ def test_export_gives_the_modules_own_logits(smoke_run, tmp_path):
 
 def test_resume_from_a_checkpoint_that_does_not_fit_names_it(smoke_run, tmp_path):
     folder = tmp_path / "run"
-    shutil.copytree(smoke_run[0], folder)
+    shutil.copytree(smoke_run.folder, folder)
     wider = load_rllib_config("rllib_smoke", iterations=3, ppo={"net_arch": [48, 48]})
     with pytest.raises(ConfigError, match=f"checkpoint {folder / CHECKPOINT} does not fit"):
         train(wider, folder, resume=True, echo=False)
 
 
-def test_more_env_runners_or_gpus_than_the_cluster_has_are_refused_not_waited_for(local_ray):
+def test_more_env_runners_or_gpus_than_the_cluster_has_are_refused_not_waited_for(ray_cluster):
     with pytest.raises(ConfigError, match="env_runners = 3, .* need 3 CPUs; .* has 2 CPUs"):
         connect(None, load_rllib_config("rllib_smoke", env_runners=3))
     with pytest.raises(ConfigError, match="gpus_per_learner = 1 need 1 GPUs; .* has 0 GPUs"):
@@ -106,6 +101,45 @@ def test_an_address_that_does_not_answer_fails_within_seconds(capsys, tmp_path):
     assert "--address 127.0.0.1:9: no Ray cluster answers there" in capsys.readouterr().err
     with pytest.raises(ConfigError, match="not HOST:PORT"):
         check_address("nowhere")
+
+
+@pytest.fixture
+def listener():
+    """Starts servers that accept, read, then send a reply (None: stay silent); HOST:PORT."""
+    servers = []
+
+    def start(reply: bytes | None) -> str:
+        server = socket.create_server(("127.0.0.1", 0))
+        servers.append(server)
+        threading.Thread(target=serve, args=(server, reply), daemon=True).start()
+        return f"127.0.0.1:{server.getsockname()[1]}"
+
+    def serve(server: socket.socket, reply: bytes | None) -> None:
+        held = []  # kept open: a silent server, not one that hangs up
+        with contextlib.suppress(OSError):  # the server closed at the test's end
+            while True:
+                held.append(server.accept()[0])
+                held[-1].recv(64)
+                if reply is not None:
+                    held[-1].sendall(reply)
+
+    yield start
+    for server in servers:
+        server.close()
+
+
+def test_an_address_that_accepts_but_is_not_ray_fails_within_the_timeout(
+    monkeypatch, listener, ray_cluster
+):
+    """ray.init would wait on these for minutes; a real head passes the same check."""
+    monkeypatch.setattr(train_rllib, "CONNECT_TIMEOUT_S", 0.5)
+    silent = listener(None)
+    with pytest.raises(ConnectionError, match=f"{silent}: no Ray cluster answers .*timed out"):
+        check_address(silent)
+    web = listener(b"HTTP/1.1 400 Bad Request\r\n\r\n")
+    with pytest.raises(ConnectionError, match=f"{web}: something answers .* not as a Ray"):
+        check_address(web)
+    check_address(ray.get_runtime_context().gcs_address)
 
 
 def test_an_unknown_module_id_is_named_with_the_known_ones(tmp_path):
@@ -199,7 +233,7 @@ def test_export_reads_shared_and_separate_actor_encoders(shared, activation, tmp
     from ray.rllib.core.columns import Columns
 
     from agents.rllib_export import export_module
-    from vooga_env.observations import HIGH, LOW
+    from vooga_env.game.observations import HIGH, LOW
 
     space = gymnasium.spaces.Box(LOW, HIGH, (OBSERVATION_SIZE,), np.float32)
     module = default_module(space, fcnet_activation=activation, vf_share_layers=shared)
