@@ -60,7 +60,7 @@ def drop_stale_kernel_cache() -> bool:
 
 def load_kernel() -> ModuleType:
     """The compiled kernel's module, its stale cache dropped first; says once on stderr when
-    the first step will compile (one to two minutes, once per install) rather than stall
+    the first step will compile (under a minute, once per install) rather than stall
     without a word."""
     global _announced
     import numba
@@ -70,7 +70,7 @@ def load_kernel() -> ModuleType:
     if not drop_stale_kernel_cache() and not _announced:
         _announced = True
         print(
-            "vooga_env: compiling the fight kernels with numba (one to two minutes, once per "
+            "vooga_env: compiling the fight kernels with numba (under a minute, once per "
             "install; cached on disk afterwards)...",
             file=sys.stderr,
             flush=True,

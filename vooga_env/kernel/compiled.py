@@ -1,8 +1,8 @@
 """The compiled kernel: `Fight.step` for one fight at a time, compiled, looped over the N fights.
 
 The scalar code of `vooga_env.game.fight` and `vooga_env.physics` for the default wiring, as stages
-named after their engine twins (`stages.py`, `kernel_observe.py`) that call the engine's own float
-formulas compiled (`kernel_parts.F`), run in the engine's order (`kernel_step.py`). Compiled on
+named after their engine twins (`stages.py`, `observe.py`) that call the engine's own float
+formulas compiled (`parts.F`), run in the engine's order (`step.py`). Compiled on
 first use (some seconds) and cached on disk (`cache=True`), so later processes start at once.
 """
 
@@ -29,7 +29,7 @@ from vooga_env.kernel.step import _reset, _step
 
 
 def kernel_arrays(params: FightParams) -> tuple[np.ndarray, ...]:
-    """One config's numbers as the kernel's parameter arrays (see kernel_parts.params_record)."""
+    """One config's numbers as the kernel's parameter arrays (see parts.params_record)."""
     c, f, r = params.config, params.config.fighter, params.config.rewards
     values = dict(
         width=params.width, height=params.height, gravity=params.gravity,
@@ -62,12 +62,12 @@ def kernel_arrays(params: FightParams) -> tuple[np.ndarray, ...]:
 
 
 def state_blocks(s: FightState) -> tuple[np.ndarray, ...]:
-    """A FightState's blocks in the order of kernel_parts.State."""
+    """A FightState's blocks in the order of parts.State."""
     return s.floats, s.ints, s.flags, s.counters, s.values
 
 
 def event_blocks(events: StepEvents) -> tuple[np.ndarray, ...]:
-    """A StepEvents' blocks in the order of kernel_parts.Events."""
+    """A StepEvents' blocks in the order of parts.Events."""
     return events.damage, events.hits, events.outs, events.over
 
 
@@ -75,7 +75,7 @@ class Kernel:
     """Holds one config's parameter arrays and steps a `FightState` with the compiled loops.
 
     The compiled entry points take arrays (numba unboxes arrays fast, a record slowly) and build
-    the records the stages take: `Params`, `State`, `Events` (kernel_parts).
+    the records the stages take: `Params`, `State`, `Events` (parts).
     """
 
     def __init__(self, params: FightParams) -> None:

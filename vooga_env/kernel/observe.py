@@ -56,7 +56,7 @@ from vooga_env.kernel.layout import (
     S_X,
     S_Y,
 )
-from vooga_env.kernel.parts import F, _stack, _unmanaged, inline
+from vooga_env.kernel.parts import F, _stack, _unmanaged, inline, stage
 
 
 @inline
@@ -100,7 +100,7 @@ def reach(p, s, i, f, m):
     return F.reaches(left, top, right, bottom, hx, hy, p.hitbox_w[m], p.hitbox_h[m])
 
 
-@inline
+@stage
 def fighter_features(p, s, out, i, f, position):
     """Fighter f's features (`FIGHTER_FEATURES`), into its own slots and its opponent's."""
     fl, it, fg = s.fl, s.it, s.fg
@@ -130,7 +130,7 @@ def fighter_features(p, s, out, i, f, position):
     _feature(out, i, f, OBS_KICK_REACH, _flag(reach(p, s, i, f, KICK)), False)
 
 
-@inline
+@stage
 def observe(p, s, out, i, position):
     """Both fighters' observations of fight i into out[i]; `position` (2, 2): scratch."""
     fl, width = s.fl, p.f_width
@@ -158,7 +158,7 @@ def observe(p, s, out, i, position):
 
 @inline
 def _observe(p, s, index, out):
-    """`observe` of the fights `index`, into out[i] ((N, 2, 41) float32); records: kernel_parts."""
+    """`observe` of the fights `index`, into out[i] ((N, 2, 41) float32); records: parts."""
     out = _unmanaged(out)
     position = numba.carray(_stack(4, np.float64), (2, 2))
     for i in index:

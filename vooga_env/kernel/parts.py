@@ -23,18 +23,30 @@ from vooga_env.game import formulas as fight_formulas
 from vooga_env.kernel.layout import MAX_TERMS
 from vooga_env.physics import formulas as physics_formulas
 
-jit = numba.njit(cache=True, nogil=True)
-# the stages and scalar helpers of the hot loops, inlined into them: numba calls a compiled
-# function through its address, which costs more than these helpers do (measured: half the time
-# of the loops)
+# The hot loops must not call their parts (a call costs more than most parts do: half the loops'
+# time, measured), yet inlining numba's IR copies a callee's whole scope once per block of it,
+# which grows with the square of what it inlined itself: the step took minutes to compile.
+# - `stage`: the stages (and the formulas: `compiled`), each compiled once, then inlined by LLVM
+#   into the loop (`forceinline`: alwaysinline); no Python wrapper (a call from Python would
+#   crash): only compiled code calls them.
+# - `inline`: numba-IR inlining where the IR stays small: the few-line helpers (a compiled one
+#   would be compiled once per literal argument it gets), the loops around the stages
+#   (step.py), and what puts scratch on the caller's stack.
+# - `jit`: an entry point, or a call kept a call (`forceinline` is inherited from the caller
+#   unless set).
+jit = numba.njit(cache=True, nogil=True, forceinline=False)
+stage = numba.njit(
+    cache=True, nogil=True, forceinline=True, no_cpython_wrapper=True, no_cfunc_wrapper=True
+)
 inline = numba.njit(cache=True, nogil=True, inline="always")
 
 MUL_HI, MUL_LO = 0x2360ED051FC65DA4, 0x4385DF649FCCF645  # PCG64's 128-bit multiplier
 
 
 def compiled(*modules: pytypes.ModuleType) -> pytypes.ModuleType:
-    """A module of every function defined in `modules`, compiled to be inlined, calling each
-    other compiled (numba reads a module's attributes, not a namespace object's).
+    """A module of every function defined in `modules`, compiled to be inlined by LLVM (see
+    `stage`; with a Python wrapper, so that the tests call them), calling each other compiled
+    (numba reads a module's attributes, not a namespace object's).
 
     Each function is re-made with one shared namespace as its globals, in which the others are
     their compiled twins (numba cannot call a plain Python function), and `math` is `math`.
@@ -47,7 +59,7 @@ def compiled(*modules: pytypes.ModuleType) -> pytypes.ModuleType:
     for name, value in list(namespace.items()):
         if isinstance(value, pytypes.FunctionType) and value.__module__ in names:
             twin = pytypes.FunctionType(value.__code__, namespace, name, value.__defaults__)
-            namespace[name] = functions[name] = numba.njit(inline="always")(twin)
+            namespace[name] = functions[name] = numba.njit(forceinline=True)(twin)
     module = pytypes.ModuleType("vooga_env.kernel.parts.F")
     vars(module).update(functions)
     return module

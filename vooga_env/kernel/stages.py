@@ -7,10 +7,11 @@ fighter), `reaction_rebound` (`ReactionRebound` with friction), `reaction_hit` (
 `reaction_push` (`ReactionPush`), `resolve` (`PendingResponse.resolve` and the sprite's update),
 `keep_in_bounds` (`FightPhysicsEngine.keep_in_bounds`), `after_frame` (the rest of
 `Fight._frame`), `reward` (`HitAndRingOutReward`) and `outcome` (the episode's end and
-`Fight.winner`). The float formulas are the engine's own, compiled (`kernel_parts.F`); what is
-written here is the bookkeeping only. Every stage is inlined into the step (`kernel_step.py`).
+`Fight.winner`). The float formulas are the engine's own, compiled (`parts.F`); what is
+written here is the bookkeeping only. Every stage is compiled once and inlined into the step
+(`step.py`) by LLVM (`parts.stage`).
 
-Arguments: `p` Params, `s` State, `e` Events, `x` Scratch (kernel_parts), `i` the fight.
+Arguments: `p` Params, `s` State, `e` Events, `x` Scratch (parts), `i` the fight.
 """
 
 from __future__ import annotations
@@ -55,12 +56,12 @@ from vooga_env.kernel.layout import (
     S_Y,
     WALK_DIRECTION,
 )
-from vooga_env.kernel.parts import F, _fsum, add_term, inline
+from vooga_env.kernel.parts import F, _fsum, add_term, inline, stage
 
 GOING_ON, DRAW = int(Outcome.GOING_ON), int(Outcome.DRAW)  # the codes besides 0 and 1
 
 
-@inline
+@stage
 def control(p, s, x, i, f, a):
     """Fighter f's action a this frame: facing, block, crouch, jumps, attacks, slide and walk."""
     fl, it, fg = s.fl, s.it, s.fg
@@ -116,7 +117,7 @@ def control(p, s, x, i, f, a):
     x.walk[f, 1] = scale * walk * p.factor
 
 
-@inline
+@stage
 def place_hitboxes(p, s, i):
     """Each fighter's hitbox, in front of it during its attack's active frames."""
     fl, it, fg = s.fl, s.it, s.fg
@@ -137,7 +138,7 @@ def place_hitboxes(p, s, i):
             fl[S_HIT_H, f, i] = p.hitbox_h[m]
 
 
-@inline
+@stage
 def integrate(p, s, x, i):
     """Gravity, the velocity's increment, then the walking MotionActions' (slide, then walk)."""
     fl = s.fl
@@ -151,7 +152,7 @@ def integrate(p, s, x, i):
             x.increments[f, 0] += x.walk[f, 1]
 
 
-@inline
+@stage
 def box_contact(l1, r1, t1, b1, ix1, iy1, l2, r2, t2, b2, ix2, iy2):
     """The broad phase (swept x intervals), then the contact test, box one the older sprite."""
     low1, high1 = F.swept_interval(l1, r1, ix1)
@@ -168,7 +169,7 @@ def fighter_box(p, s, f, i):
     return left, left + p.f_width, top, top + s.fl[S_HEIGHT, f, i]
 
 
-@inline
+@stage
 def find_contacts(p, s, x, i):
     """Every contact of the frame, flagged; rebounds recorded as found. Returns the fighters' pair
     contact (found, axis, normal, time_of_impact, depth), seen from fighter 0."""
@@ -210,7 +211,7 @@ def find_contacts(p, s, x, i):
     return pair
 
 
-@inline
+@stage
 def hitbox_contact(p, s, x, i, a):
     """Fighter a's hitbox against the other fighter d: flags d, records a hit not yet struck."""
     fl, d = s.fl, 1 - a
@@ -235,7 +236,7 @@ def hitbox_contact(p, s, x, i, a):
         x.hit_toi[a] = toi
 
 
-@inline
+@stage
 def reaction_rebound(p, s, x, i, f, b, axis, normal, toi):
     """ReactionRebound (no bouncy edge) of fighter f on block b; `normal` seen from the fighter."""
     bx, by, bw, bh = p.blocks[0, b], p.blocks[1, b], p.blocks[2, b], p.blocks[3, b]
@@ -258,7 +259,7 @@ def reaction_rebound(p, s, x, i, f, b, axis, normal, toi):
         x.rubbing[f, along] = True
 
 
-@inline
+@stage
 def reaction_hit(p, s, x, i, a):
     """ReactionHit of fighter a's hitbox on fighter d: the launch as terms, the hit recorded."""
     fl, fg, d = s.fl, s.fg, 1 - a
@@ -280,7 +281,7 @@ def reaction_hit(p, s, x, i, a):
     x.hit_blocked[a] = blocked
 
 
-@inline
+@stage
 def reaction_push(p, s, x, i, axis, normal, toi, depth):
     """ReactionPush of the fighters' contact (seen from fighter 0): separation, then the common
     motion while they close, or the upper one stopped on a grounded lower one."""
@@ -307,7 +308,7 @@ def reaction_push(p, s, x, i, axis, normal, toi, depth):
             add_term(x, 1, 1, axis, common_velocity - speed1)
 
 
-@inline
+@stage
 def resolve(p, s, x, i, f):
     """Fighter f's update: the reactions' result if it collided (exact sums, friction, bounds),
     else its increment."""
@@ -345,7 +346,7 @@ def resolve(p, s, x, i, f):
         fl[velocity_row, f, i] = speed
 
 
-@inline
+@stage
 def keep_in_bounds(p, s, i, f):
     """Fighter f back inside the arena's left, right and top bounds (not the bottom: ring-out)."""
     fl = s.fl
@@ -360,7 +361,7 @@ def keep_in_bounds(p, s, i, f):
         fl[S_VY, f, i] = F.py_max(fl[S_VY, f, i], 0.0)
 
 
-@inline
+@stage
 def after_frame(p, s, e, x, i, pair_found, pair_axis, pair_normal):
     """The rest of Fight._frame: on-head, landing, stun and move counters, the hits in attacker
     order, ring-outs and KOs (respawns). True when a fighter lost its last stock."""
@@ -393,7 +394,7 @@ def after_frame(p, s, e, x, i, pair_found, pair_axis, pair_normal):
     return it[S_STOCKS, 0, i] <= 0 or it[S_STOCKS, 1, i] <= 0
 
 
-@inline
+@stage
 def apply_hit(p, s, e, x, i, a):
     """Fight._apply_hit of fighter a's hit: health, stun, the defender's move and block, events."""
     d, m, points, blocked = 1 - a, x.hit_move[a], x.hit_damage[a], x.hit_blocked[a]
@@ -409,7 +410,7 @@ def apply_hit(p, s, e, x, i, a):
         e.hits[0, a, i] += 1
 
 
-@inline
+@stage
 def respawn(p, s, f, i):
     """Fight._respawn: back on the spawn point, standing, at full health, with no move or stun."""
     fl, it, fg = s.fl, s.it, s.fg
@@ -433,7 +434,7 @@ def respawn(p, s, f, i):
     fg[S_STRUCK, f, i] = False
 
 
-@inline
+@stage
 def edge_advantage(p, s, i):
     """The reward's edge potential of fight i (formulas.edge_advantage)."""
     room_0 = F.edge_room(s.fl[S_X, 0, i] + p.f_width / 2.0, p.stage_left, p.stage_right)
@@ -441,7 +442,7 @@ def edge_advantage(p, s, i):
     return F.edge_advantage(room_0, room_1, p.stage_left, p.stage_right)
 
 
-@inline
+@stage
 def reward(p, s, e, i, rewards):
     """HitAndRingOutReward of the step (its edge shaping included) into rewards[i]."""
     shaping = 0.0
@@ -458,7 +459,7 @@ def reward(p, s, e, i, rewards):
         rewards[i, me] = value + sign * shaping - p.r_time
 
 
-@inline
+@stage
 def outcome(p, s, e, i):
     """(truncated, winner) after the step: 0 or 1 (more stocks, then more health), DRAW, or
     GOING_ON while the fight neither ended nor ran out of steps."""

@@ -11,7 +11,7 @@ import numpy as np
 
 from vooga_env.kernel import stages
 from vooga_env.kernel.layout import S_FRAME, S_POTENTIAL, S_SPAWN_TOP, S_SPAWN_X, S_STEPS, S_STOCKS
-from vooga_env.kernel.parts import _next_double, inline, scratch
+from vooga_env.kernel.parts import _next_double, inline, scratch, stage
 from vooga_env.kernel.stages import F
 
 
@@ -70,7 +70,7 @@ def _reset(p, s, rng, index):
         s.values[S_POTENTIAL, i] = stages.edge_advantage(p, s, i)  # HitAndRingOutReward.reset
 
 
-@inline
+@stage
 def _spawn_top(p, x):
     """config.spawn_block's top: the highest block under a fighter at x, the first on a tie."""
     top = np.inf

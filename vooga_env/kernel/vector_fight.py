@@ -7,7 +7,7 @@
 Fight i behaves exactly as `parallel_env(config).reset(seed=seed + i)` followed by the same actions,
 `reset()` (no seed) whenever it ends: same positions, velocities, observations, rewards, dones. A
 fight that ends is reset in the same `step`; its last observation is `info["final_observation"]`.
-The fights are stepped by the numba kernel (`kernel.py`; numba is a core dependency), in
+The fights are stepped by the numba kernel (`compiled.py`; numba is a core dependency), in
 `threads` chunks at once (default one; more is a choice for an otherwise idle machine); the
 results do not depend on it. The engine backend of the single env (`parallel_env(backend=
 "engine")`) is the readable reference the kernel is tested against.
