@@ -124,6 +124,7 @@ def test_old_paths_still_import_with_a_warning():
             module = importlib.import_module(old)
         assert any(f"{old} moved to {new} " in str(warning.message) for warning in warned)
         assert module is importlib.import_module(new)
+        assert module.__spec__.name == new  # so that reload, pickling by spec, -m keep working
 
 
 def test_the_public_names_of_0_1_still_work():
