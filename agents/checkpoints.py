@@ -12,11 +12,13 @@ state if a kill fell between the state and the link.
 
 from __future__ import annotations
 
+import dataclasses
 import errno
 import fcntl
 import hashlib
 import json
 import os
+import shutil
 from pathlib import Path
 from typing import Any
 
@@ -124,6 +126,40 @@ def remove_partial_files(folder: Path) -> list[Path]:
     for path in partial:
         path.unlink()
     return partial
+
+
+def holds_run(folder: Path) -> bool:
+    """Whether `folder` holds a run: a committed state or a latest checkpoint."""
+    return (folder / STATE_FILE).exists() or (folder / LATEST).exists()
+
+
+def resume_state(folder: Path) -> dict[str, Any]:
+    """The committed state of the run in `folder`, with the temp files of cut-short writes gone
+    and latest.zip pointing at it again (a kill between the state and its link left it behind)."""
+    remove_partial_files(folder)
+    state = read_state(folder)
+    link_latest(folder, state)
+    return state
+
+
+def start_fresh(folder: Path, overwrite: bool, config: Any, config_file: str) -> None:
+    """Make `folder` a new run's and write its config there. A folder holding a run is refused,
+    or with `overwrite` emptied but for our lock; a folder holding none is never emptied (so
+    `--out .` deletes nothing)."""
+    if holds_run(folder):
+        if not overwrite:
+            raise FileExistsError(
+                f"{folder} holds a run already: --resume continues it, --overwrite starts over "
+                "(deleting it), or pick another --out"
+            )
+        for path in folder.iterdir():
+            if path.name == LOCK_FILE:  # ours now
+                continue
+            if path.is_dir() and not path.is_symlink():
+                shutil.rmtree(path)
+            else:
+                path.unlink()
+    atomic_write_text(folder / config_file, json.dumps(dataclasses.asdict(config), indent=2))
 
 
 def read_state(folder: Path) -> dict[str, Any]:

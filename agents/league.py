@@ -21,10 +21,8 @@ size and the PFSP win rates are logged (TensorBoard when installed).
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import importlib.util
 import json
-import shutil
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -42,20 +40,18 @@ from vooga_env.game.config import CONFIG_DIR, ConfigError, build_config, load_co
 from vooga_env.policies import SCRIPTED
 from vooga_env.policies.batched import VectorOpponent
 from vooga_env.policies.models import BatchPolicy, FrozenPolicy, load_model
-from vooga_env.tools.files import atomic_write, atomic_write_text
+from vooga_env.tools.files import atomic_write
 
 from . import common
 from .checkpoints import (
-    LATEST,
-    LOCK_FILE,
     STATE_FILE,
     BrokenRun,
     Diverged,
     RunLock,
     RunLocked,
-    link_latest,
-    read_state,
-    remove_partial_files,
+    holds_run,
+    resume_state,
+    start_fresh,
 )
 from .exploit import make_learner
 from .league_pool import WEIGHTINGS, Pool, PoolOpponent
@@ -320,30 +316,11 @@ def _prepare(
     folder: Path, resume: bool, overwrite: bool, config: LeagueRunConfig
 ) -> dict[str, Any]:
     """The committed state to resume from ({} for a fresh run, in an emptied folder if asked)."""
-    used = (folder / STATE_FILE).exists() or (folder / LATEST).exists()
     if resume:
-        if not used:
+        if not holds_run(folder):
             raise FileNotFoundError(f"--resume: no checkpoint in {folder}")
-        remove_partial_files(folder)
-        state = read_state(folder)
-        link_latest(folder, state)
-        return state
-    if used and not overwrite:
-        raise FileExistsError(
-            f"{folder} holds a run already: --resume continues it, --overwrite starts over "
-            "(deleting it), or pick another --out"
-        )
-    if used:
-        for path in folder.iterdir():
-            if path.name == LOCK_FILE:
-                continue
-            if path.is_dir() and not path.is_symlink():
-                shutil.rmtree(path)
-            else:
-                path.unlink()
-    atomic_write_text(
-        folder / "league_config.json", json.dumps(dataclasses.asdict(config), indent=2)
-    )
+        return resume_state(folder)
+    start_fresh(folder, overwrite, config, "league_config.json")
     return {}
 
 

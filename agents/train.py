@@ -16,11 +16,9 @@ finished model is `OUT/final.zip`; `agents.evaluate` measures it.
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import importlib.util
 import json
 import math
-import shutil
 import sys
 import time
 from functools import partial
@@ -41,20 +39,17 @@ from vooga_env.policies.models import load_model
 
 from .callbacks import CurriculumCallback, SelfPlayCallback, StateCheckpointCallback
 from .checkpoints import (
-    LATEST,
-    LOCK_FILE,
     STATE_FILE,
     BrokenRun,
     Diverged,
     RunLock,
     RunLocked,
     atomic_write,
-    atomic_write_text,
     check_finite,
-    link_latest,
-    read_state,
-    remove_partial_files,
+    holds_run,
+    resume_state,
     save_checkpoint,
+    start_fresh,
 )
 from .train_config import TrainConfig, load_train_config
 
@@ -172,29 +167,11 @@ def train(
 
 def _prepare(folder: Path, resume: bool, overwrite: bool, config: TrainConfig) -> dict[str, Any]:
     """The committed state to resume from ({} for a fresh run, in an emptied folder if asked)."""
-    used = (folder / STATE_FILE).exists() or (folder / LATEST).exists()
-    if resume and used:
-        remove_partial_files(folder)
-        state = read_state(folder)
-        link_latest(folder, state)  # a kill between the state and its link left latest.zip behind
-        return state
+    if resume and holds_run(folder):
+        return resume_state(folder)
     if resume:
         print(f"--resume: {folder} holds no checkpoint yet; starting from step 0")
-    elif used and not overwrite:
-        raise FileExistsError(
-            f"{folder} holds a run already: --resume continues it, --overwrite starts over "
-            "(deleting it), or pick another --out"
-        )
-    elif used:  # --overwrite: only a folder that holds a run is emptied (never `--out .`)
-        for path in folder.iterdir():
-            if path.name == LOCK_FILE:  # ours now
-                continue
-            if path.is_dir() and not path.is_symlink():
-                shutil.rmtree(path)
-            else:
-                path.unlink()
-    config_text = json.dumps(dataclasses.asdict(config), indent=2)
-    atomic_write_text(folder / "train_config.json", config_text)
+    start_fresh(folder, overwrite, config, "train_config.json")
     return {}
 
 
