@@ -58,6 +58,8 @@ from .league_pool import WEIGHTINGS, Pool, PoolOpponent
 from .train import learn_and_save, load_init, start_from
 from .train_config import PPOConfig
 
+EXPLOITER_PLAYS = ("sampled", "argmax", "alternate")
+
 
 @dataclass(frozen=True)
 class LeagueConfig:
@@ -72,6 +74,9 @@ class LeagueConfig:
     exploiter_every: int = 0
     exploiter_steps: int = 200_000
     exploiters: int = 2  # exploiters kept in the pool
+    # How the frozen learner plays while an exploiter trains against it: "argmax", "sampled" (as
+    # it plays in training), or "alternate" (argmax first, then turn about).
+    exploiter_play: str = "argmax"
     # 0: every scripted fighter is in the pool from the start. Above 0: they join one at a time,
     # in the order of `scripted`, the next once the learner's mean score over the scripted
     # members present (a full `results_window` of games each) reaches this.
@@ -88,6 +93,11 @@ class LeagueConfig:
                 raise ConfigError(f"{key} = {getattr(self, key)} is not allowed: must be > 0")
         if self.exploiter_every < 0:
             raise ConfigError(f"exploiter_every = {self.exploiter_every} is not allowed: >= 0")
+        if self.exploiter_play not in EXPLOITER_PLAYS:
+            raise ConfigError(
+                f"exploiter_play = {self.exploiter_play!r} is not allowed: one of "
+                f"{list(EXPLOITER_PLAYS)}"
+            )
         if not 0.0 <= self.join_win_rate <= 1.0:
             raise ConfigError(f"join_win_rate = {self.join_win_rate} is not allowed: in [0, 1]")
         if not 0.0 < self.floor <= 1.0:
@@ -149,6 +159,7 @@ class LeagueCallback(BaseCallback):
                 self._join(kind, name, results.get(name))
         self.last_save = state.get("last_save", 0)
         self.last_exploiter = state.get("last_exploiter", 0)
+        self.exploiters_made = state.get("exploiters_made", 0)
         self.opponent: PoolOpponent | None = None
 
     def attach(self, opponent: PoolOpponent) -> None:
@@ -218,9 +229,19 @@ class LeagueCallback(BaseCallback):
         self._join("snapshots", name)
         self.last_save = steps
 
+    def exploiter_target(self) -> FrozenPolicy:
+        """The frozen learner the next exploiter trains against, playing as `exploiter_play`
+        says ("alternate": argmax for the first exploiter, sampled for the second, ...)."""
+        play = self.league.exploiter_play
+        if play == "alternate":
+            play = ("argmax", "sampled")[self.exploiters_made % 2]
+        learner = FrozenPolicy(self.model, "learner", deterministic=play == "argmax")
+        learner.reset(int(self.rng.integers(2**31)))
+        return learner
+
     def _exploiter(self) -> None:
-        """Train a fresh learner against the frozen learner's argmax play, then pool it."""
-        target = BatchPolicy(FrozenPolicy(self.model, "learner", deterministic=True))
+        """Train a fresh learner against the frozen learner, then pool it."""
+        target = BatchPolicy(self.exploiter_target())
         fights = max(self.config.fights // 2, 1)
         envs = FightVecEnv(
             fights, load_config(self.config.fight), opponent=target, seat="alternate"
@@ -233,6 +254,7 @@ class LeagueCallback(BaseCallback):
         atomic_write(self.folder / "exploiters" / f"{name}.zip", exploiter.save)
         self._join("exploiters", name)
         self.last_exploiter = self.num_timesteps
+        self.exploiters_made += 1
 
     def state(self) -> dict[str, Any]:
         return {
@@ -242,6 +264,7 @@ class LeagueCallback(BaseCallback):
             "scripted_joined": self.joined,
             "last_save": self.last_save,
             "last_exploiter": self.last_exploiter,
+            "exploiters_made": self.exploiters_made,
         }
 
 

@@ -10,7 +10,8 @@
    and one learner against a scripted fighter) against PPO on CartPole (SB3's DummyVecEnv) with
    the same n_envs, n_steps and network (torch on one thread for both).
 4. Pixel observations (`obs_type="pixels"`, 84x84 grayscale) against the vector ones, on the
-   single env and on the batch at N = 256 and 1024: the cost of drawing what a fighter sees.
+   single env and on the batch at N = 256 and 1024, both fighters' images and one a fight
+   (`pixel_seats`: what the one-learner faces draw): the cost of drawing what a fighter sees.
 5. Memory: the bytes of a 4096-fight batch's state arrays, and this process's peak RSS.
 
 Every figure is the median of several timed rounds, ours and the reference's interleaved so that
@@ -138,8 +139,10 @@ def gym_steps() -> Callable[[int], int]:
     return gymnasium_steps(gymnasium.make("vooga_env/Fight-v0", opponent="random"))
 
 
-def batched_steps(size: int, threads: int, obs_type: str = "vector") -> Callable[[int], int]:
-    fights = VectorFight(size, threads=threads, obs_type=obs_type)
+def batched_steps(
+    size: int, threads: int, obs_type: str = "vector", pixel_seats: str | None = None
+) -> Callable[[int], int]:
+    fights = VectorFight(size, threads=threads, obs_type=obs_type, pixel_seats=pixel_seats)
     fights.reset(seed=0)
     actions = np.random.default_rng(0).integers(10, size=(16, size, 2))
     fights.step(actions[0])  # compiles (or loads) the numba kernel before any timing
@@ -162,10 +165,11 @@ def pixel_rows(sizes: Sequence[int], seconds: float, rounds: int) -> list[dict]:
         )
         rows.append(row(f"ParallelEnv.step, backend={backend!r}", *measured, n=1))
     for size in [s for s in sizes if s in (256, 1024)] or [max(sizes)]:
-        measured = side_by_side(
-            batched_steps(size, 1, "pixels"), batched_steps(size, 1), seconds, rounds
-        )
-        rows.append(row(f"VectorFight N={size} (1 thread)", *measured, n=size))
+        for seats, label in ((None, "both seats"), ("alternate", "one seat a fight")):
+            measured = side_by_side(
+                batched_steps(size, 1, "pixels", seats), batched_steps(size, 1), seconds, rounds
+            )
+            rows.append(row(f"VectorFight N={size} (1 thread, {label})", *measured, n=size))
     return rows
 
 

@@ -74,9 +74,9 @@ def measure(model: Path, games: int, round_robin_games: int, seed: int = 12345) 
 
 
 def measure_pixels(model_path: Path, config: TrainConfig, games: int) -> dict[str, Any]:
-    """A pixel model against idle, random and rush, sampling its actions as it did in training,
-    in the envs it trained in (images, frame stack; 16 at once); `run_match` plays vector
-    fighters only."""
+    """A pixel model against idle, random and rush, sampling its actions as it did in training
+    ("vs_NAME") and taking the argmax ("vs_NAME_argmax"), in the envs it trained in (images,
+    frame stack; 16 at once); `run_match` plays vector fighters only."""
     from stable_baselines3 import PPO
 
     model = PPO.load(model_path, device="cpu")
@@ -84,23 +84,29 @@ def measure_pixels(model_path: Path, config: TrainConfig, games: int) -> dict[st
     config = dataclasses.replace(config, n_envs=16)
     result = {}
     for offset, opponent in enumerate(("idle", "random", "rush")):
-        envs = make_envs(config, opponent, seed=12345 + 1000 * offset)
-        envs = envs.venv if isinstance(envs, VecNormalize) else envs
-        scores: list[float] = []
-        observations = envs.reset()
-        while len(scores) < games:
-            actions, _ = model.predict(observations, deterministic=False)
-            observations, _, dones, infos = envs.step(actions)
-            scores += [learner_won(info) for done, info in zip(dones, infos) if done]
-        scores = scores[:games]
-        wins, draws = scores.count(1.0), scores.count(0.5)
-        low, high = wilson_interval(wins, games)
-        result[f"vs_{opponent}"] = {
-            "games": games, "wins": wins, "losses": games - wins - draws, "draws": draws,
-            "win_rate": wins / games, "wilson95": [low, high],
-        }  # fmt: skip
-        envs.close()
+        for suffix, deterministic in (("", False), ("_argmax", True)):
+            envs = make_envs(config, opponent, seed=12345 + 1000 * offset)
+            envs = envs.venv if isinstance(envs, VecNormalize) else envs
+            scores = _scores(model, envs, games, deterministic)
+            wins, draws = scores.count(1.0), scores.count(0.5)
+            low, high = wilson_interval(wins, games)
+            result[f"vs_{opponent}{suffix}"] = {
+                "games": games, "wins": wins, "losses": games - wins - draws, "draws": draws,
+                "win_rate": wins / games, "wilson95": [low, high],
+            }  # fmt: skip
+            envs.close()
     return result
+
+
+def _scores(model: Any, envs: Any, games: int, deterministic: bool) -> list[float]:
+    """The learner's first `games` results (1 win, 0.5 draw, 0 loss) in `envs`."""
+    scores: list[float] = []
+    observations = envs.reset()
+    while len(scores) < games:
+        actions, _ = model.predict(observations, deterministic=deterministic)
+        observations, _, dones, infos = envs.step(actions)
+        scores += [learner_won(info) for done, info in zip(dones, infos) if done]
+    return scores[:games]
 
 
 def describe(label: str, result: dict[str, Any]) -> str:
@@ -139,7 +145,8 @@ def main(argv: list[str] | None = None) -> int:
         atomic_write_text(args.out / "result.json", json.dumps(result, indent=2))
         print(f"trained {config.name} for {trained / 60:.1f} min")
         for opponent in ("idle", "random", "rush"):
-            print(describe(f"vs {opponent}", result[f"vs_{opponent}"]))
+            print(describe(f"vs {opponent}, sampled", result[f"vs_{opponent}"]))
+            print(describe(f"vs {opponent}, argmax", result[f"vs_{opponent}_argmax"]))
         print(f"wrote {args.out / 'result.json'}")
         return 0
     result.update(measure(model, args.games, args.round_robin_games))

@@ -122,11 +122,53 @@ def test_the_same_seed_trains_the_same_league_and_init_starts_from_a_model(tmp_p
         train_league(load_league_config("smoke", init="nowhere.zip"), tmp_path / "d")
 
 
+@pytest.mark.parametrize(
+    ("play", "deterministic"),
+    [
+        ("sampled", [False, False, False]),
+        ("argmax", [True] * 3),
+        ("alternate", [True, False, True]),
+    ],
+)
+def test_exploiters_train_against_the_learner_playing_as_asked(tmp_path, play, deterministic):
+    config = load_league_config("smoke", league={"exploiter_play": play})
+    league = LeagueCallback(config, tmp_path, {})
+    league.model = load_model(
+        train_league(load_league_config("smoke", total_timesteps=256), tmp_path / "run")
+    )
+    targets = []
+    for made in range(3):
+        league.exploiters_made = made
+        targets.append(league.exploiter_target().deterministic)
+    assert targets == deterministic
+    assert LeagueCallback(config, tmp_path, {"exploiters_made": 5}).exploiters_made == 5
+
+
 def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
     with pytest.raises(ConfigError, match="pfsp = 'greedy' is not allowed"):
         load_league_config("smoke", league={"pfsp": "greedy"})
     with pytest.raises(ConfigError, match="scripted = 'ninja' is not allowed"):
         load_league_config("smoke", league={"scripted": ["ninja"]})
+    with pytest.raises(ConfigError, match="exploiter_play = 'best' is not allowed: one of"):
+        load_league_config("smoke", league={"exploiter_play": "best"})
     with pytest.raises(SystemExit) as stop:
         main(["--config", "smoke", "--out", str(tmp_path), "--resume"])
     assert stop.value.code == 2 and "no checkpoint" in capsys.readouterr().err
+
+
+def test_the_league_benchmark_measures_every_target(tmp_path):
+    from bench import league_recipe
+    from vooga_env.policies import SCRIPTED
+
+    assert league_recipe.main(["--quick", "--out", str(tmp_path)]) == 0
+    result = json.loads((tmp_path / "result.json").read_text())
+    for play in ("sampled", "argmax"):
+        assert list(result["win_rates"][play]) == list(SCRIPTED)
+        assert all(row["games"] == 4 for row in result["win_rates"][play].values())
+    assert sorted(row["name"] for row in result["elo"]) == sorted(["model", *SCRIPTED])
+    attacks = result["style"]["attacks"]
+    assert set(attacks) == {"punch", "kick"} and result["style"]["games"] == 2 * len(SCRIPTED)
+    assert all(attack["landed"] <= attack["attempted"] for attack in attacks.values())
+    for play in ("sampled", "argmax"):
+        curve = result["exploit"][play]
+        assert curve[0]["steps"] == 0 and curve[-1]["steps"] > 0

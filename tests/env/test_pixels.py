@@ -82,6 +82,50 @@ def test_the_batch_draws_each_fights_single_env_images():
     assert resets >= n  # every fight ended (max_cycles 40) and restarted at least once
 
 
+@pytest.mark.parametrize("rgb", [False, True])
+def test_one_seats_images_are_that_seat_of_both(rgb):
+    n, steps = 4, 120
+    kwargs = dict(obs_type="pixels", pixel_size=(40, 56), pixel_rgb=rgb, max_cycles=30)
+    both = VectorFight(n, **kwargs)
+    one = VectorFight(n, pixel_seats="alternate", **kwargs)
+    seats = np.arange(n) % 2
+    first, second = both.reset(seed=3), one.reset(seed=3)
+    assert second.shape == (n, *first.shape[2:])
+    assert np.array_equal(first[np.arange(n), seats], second)
+    actions = np.random.default_rng(1).integers(0, 10, size=(steps, n, 2))
+    ended = 0
+    for step in range(steps):
+        first, *_, info = both.step(actions[step])
+        second, *_, info_one = one.step(actions[step])
+        assert np.array_equal(first[np.arange(n), seats], second)
+        done = info["done_index"]
+        assert np.array_equal(done, info_one["done_index"])
+        finals = info["final_observation"][np.arange(done.size), seats[done]]
+        assert np.array_equal(finals, info_one["final_observation"])
+        ended += done.size
+    assert ended >= n  # the final images were compared too
+
+
+@pytest.mark.parametrize("face", ["sb3", "gymnasium"])
+def test_the_one_learner_faces_see_the_learners_seat(face):
+    from vooga_env.envs.sb3 import FightVecEnv
+
+    n, kwargs = 3, dict(obs_type="pixels", pixel_size=(32, 48), max_cycles=30)
+    if face == "sb3":
+        env = FightVecEnv(n, opponent="random", seat="alternate", **kwargs)
+        seats, observations = np.arange(n) % 2, env.reset()
+    else:
+        env = gymnasium.make_vec("vooga_env/Fight-v0", num_envs=n, seat=1, opponent="random",
+                                 vectorization_mode="vector_entry_point", **kwargs)  # fmt: skip
+        seats, (observations, _) = np.ones(n, dtype=int), env.reset(seed=0)
+    fights = env.fights if face == "sb3" else env.unwrapped.fights
+    both = np.empty((n, 2, 32, 48, 1), dtype=np.uint8)
+    for _ in range(60):
+        fights._raster.render(fights.state, np.arange(n), both)
+        assert np.array_equal(observations.reshape(n, 32, 48), both[np.arange(n), seats, ..., 0])
+        observations, *_ = env.step(np.random.default_rng(0).integers(0, 10, size=n))
+
+
 # Dyadic values keep x' = width - x - w exact in floating point (as in test_mirror).
 coordinate = st.integers(0, 2000).map(lambda n: n / 4)
 fighter_state = st.fixed_dictionaries(
@@ -189,7 +233,7 @@ def test_frame_stacks_hold_the_last_images():
     assert stacked.shape == (2, 84, 84, 3) and vec.observation_space.shape == (84, 84, 3)
     for _ in range(4):
         stacked, *_ = vec.step(np.array([2, 2]))
-    images = vec.venv.fights.observe()["pixels"][:, 0]
+    images = vec.venv.fights.observe()["pixels"]  # seat 0's alone: the learner's
     assert np.array_equal(stacked[..., -1], images)
 
 
@@ -225,6 +269,20 @@ BAD = [
     ({"obs_type": "pixels", "pixel_size": (84.0, 84)}, "two ints in 16..512"),
     ({"obs_type": "both", "pixel_rgb": "yes"}, "pixel_rgb = 'yes' is not allowed"),
 ]
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"pixel_seats": 2}, "pixel_seats = 2 is not allowed: 0, 1, 'alternate' or one seat"),
+        ({"pixel_seats": [0, 1, 0]}, r"pixel_seats = \[0, 1, 0\] is not allowed"),
+        ({"pixel_seats": "both"}, "pixel_seats = 'both' is not allowed"),
+        ({"obs_type": "vector", "pixel_seats": 0}, "pixel_seats is for pixel observations"),
+    ],
+)
+def test_bad_pixel_seats_are_refused_by_name(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        VectorFight(2, **{"obs_type": "pixels", **kwargs})
 
 
 @pytest.mark.parametrize(("kwargs", "message"), BAD)

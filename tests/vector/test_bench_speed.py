@@ -38,7 +38,8 @@ def test_quick_speed_benchmark_prints_tables_and_writes_json(tmp_path):
     assert {row["n"] for row in report["batched"]} == {1, 16}
     assert {row["threads"] for row in report["batched"]} == {1}  # two only from N = 256
     assert len(report["ppo"]) == 2
-    assert [row["n"] for row in report["pixels"]] == [1, 1, 16]  # both backends, the largest N
+    # both backends, then the largest N with both seats and one seat a fight
+    assert [row["n"] for row in report["pixels"]] == [1, 1, 16, 16]
     for row in report["single"] + report["batched"] + report["pixels"] + report["ppo"]:
         assert row["ours"] > 0 and row["reference"] > 0 and math.isfinite(row["ratio"])
         assert row["ratio"] == pytest.approx(row["ours"] / row["reference"])  # one round

@@ -69,7 +69,10 @@ class FightVectorEnv(gymnasium.vector.VectorEnv):
         pixel_spec(obs_type)  # an unknown obs_type is refused by its own name, not as "both"
         self.obs_type = obs_type
         inner = obs_type if obs_type == "vector" else "both"  # the opponent acts on the vectors
-        self.fights = VectorFight(num_envs, config, threads=threads, obs_type=inner, **overrides)
+        seats = None if obs_type == "vector" else seat  # only the learner's images are drawn
+        self.fights = VectorFight(
+            num_envs, config, threads=threads, obs_type=inner, pixel_seats=seats, **overrides
+        )
         self.num_envs = self.fights.num_fights
         self.opponent = batch_opponent(opponent)
         self.seat = seat
@@ -136,8 +139,8 @@ class FightVectorEnv(gymnasium.vector.VectorEnv):
         if self.obs_type == "vector":
             return observations[:, self.seat]
         if self.obs_type == "pixels":
-            return observations["pixels"][:, self.seat]
-        return {key: value[:, self.seat] for key, value in observations.items()}
+            return observations["pixels"]
+        return {"vector": observations["vector"][:, self.seat], "pixels": observations["pixels"]}
 
     def _vectors(self, observations: Any) -> np.ndarray:
         return observations if self.obs_type == "vector" else observations["vector"]

@@ -13,7 +13,7 @@ Two ways to fill the slots:
 `obs_type` ("vector", "pixels" or "both", with `pixel_size` and `pixel_rgb`) as the single env's:
 images (H, W, 1) uint8 per slot (grayscale with a channel axis, or (H, W, 3)), the shape
 `CnnPolicy` and `VecFrameStack` take, or a dict for `MultiInputPolicy`; opponents act on the
-vectors.
+vectors, so against one only the learner's images are drawn (`VectorFight`'s `pixel_seats`).
 
 SB3's conventions: `reset()` returns the observations only; `seed(seed)` seeds fight i with
 `seed + i` at the next `reset()`; a fight that ends is reset at once, and its slots' infos carry
@@ -77,12 +77,15 @@ class FightVecEnv(VecEnv):
             raise ValueError(f"render_mode must be None or 'rgb_array', got {render_mode!r}")
         pixel_spec(obs_type)  # an unknown obs_type is refused by its own name, not as "both"
         self.obs_type = obs_type
+        self.self_play = opponent is None
         self.fights = VectorFight(
             num_fights,
             config,
             backend=backend,
             threads=threads,
             obs_type=obs_type if obs_type == "vector" else "both",  # opponents act on vectors
+            # against an opponent only the learner's images are drawn
+            pixel_seats=None if self.self_play or obs_type == "vector" else seat,
             **overrides,
         )
         self.render_mode = render_mode
@@ -93,7 +96,6 @@ class FightVecEnv(VecEnv):
         self._rows = fights
         self._seats = fights % 2 if alternate else np.full(num_fights, seat)
         self.info_events = info_events
-        self.self_play = self.opponent is None
         slots = 2 * num_fights if self.self_play else num_fights
         super().__init__(
             slots,
@@ -213,12 +215,16 @@ class FightVecEnv(VecEnv):
 
     # --- helpers
     def _slots(self, observations: Any) -> Any:
-        """The batch's observations (N, 2, ...) as the slots', as `obs_type` asks."""
+        """The batch's observations as the slots', as `obs_type` asks: the vectors (N, 2, 41)
+        and, in self-play, the images (N, 2, H, W[, C]) by slot; against an opponent the images
+        are the learner's already (N, H, W[, C])."""
         if isinstance(observations, dict):
-            observations = {**observations, "pixels": self._channels(observations["pixels"])}
+            pixels = self._channels(observations["pixels"])
+            if self.self_play:
+                pixels = pixels.reshape(-1, *pixels.shape[2:])
             if self.obs_type == "pixels":
-                return self._slots(observations["pixels"])
-            return {key: self._slots(value) for key, value in observations.items()}
+                return pixels
+            return {"vector": self._slots(observations["vector"]), "pixels": pixels}
         if self.self_play:
             return observations.reshape(-1, *observations.shape[2:])
         return observations[self._rows, self._seats]
@@ -265,7 +271,8 @@ class FightVecEnv(VecEnv):
         """One slot's last observation of an ended fight, as `obs_type` asks."""
         if not isinstance(finals, dict):
             return finals[row, seat]
-        images = self._channels(finals["pixels"][row, seat])
+        images = finals["pixels"][row, seat] if self.self_play else finals["pixels"][row]
+        images = self._channels(images)
         if self.obs_type == "pixels":
             return images
         return {"vector": finals["vector"][row, seat], "pixels": images}

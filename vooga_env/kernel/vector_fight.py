@@ -52,6 +52,7 @@ class VectorFight:
         obs_type: str = "vector",
         pixel_size: tuple[int, int] = (84, 84),
         pixel_rgb: bool = False,
+        pixel_seats: Any = None,
         **overrides: Any,
     ) -> None:
         self.obs_type = obs_type
@@ -86,6 +87,28 @@ class VectorFight:
             from vooga_env.kernel.cache import load_raster
 
             self._raster = load_raster().Rasteriser(self.params, self.pixels)
+        self.pixel_seats = self._check_pixel_seats(pixel_seats)
+
+    def _check_pixel_seats(self, seats: Any) -> np.ndarray | None:
+        """The seat whose image each fight draws: 0 or 1 for all, "alternate" (i % 2), or one
+        per fight; None: both seats' images, (N, 2, H, W[, 3])."""
+        if seats is None:
+            return None
+        if self.pixels is None:
+            raise ValueError(
+                f"pixel_seats is for pixel observations, not obs_type={self.obs_type!r}"
+            )
+        if isinstance(seats, str) and seats == "alternate":
+            return self._all % 2
+        array = np.asarray(seats)
+        if array.ndim == 0:
+            array = np.full(self.num_fights, array)
+        if array.shape != (self.num_fights,) or not np.isin(array, (0, 1)).all():
+            raise ValueError(
+                f"pixel_seats = {seats!r} is not allowed: 0, 1, 'alternate' or one seat (0 or 1) "
+                f"per fight, {self.num_fights} of them"
+            )
+        return array.astype(np.int64)
 
     def _thread_count(self, threads: int) -> int:
         """Threads for the step, one unless asked: a second thread gains 1.5-2x on an idle
@@ -149,7 +172,9 @@ class VectorFight:
         DRAW -1, GOING_ON -2 while the fight goes on), `done_index` (the ended fights' indices,
         ascending) and `final_observation` (len(done_index), 2, 41): their last observations.
         With `obs_type="pixels"` the observations (and the final ones) are the images
-        (N, 2, H, W[, 3]) uint8 instead, with "both" a dict of the two ("vector", "pixels").
+        (N, 2, H, W[, 3]) uint8 instead, with "both" a dict of the two ("vector", "pixels");
+        with `pixel_seats` only fighter pixel_seats[i]'s image of fight i, (N, H, W[, 3]): a
+        learner against a scripted opponent needs its own view only, at half the cost.
         """
         events, rewards, terminated, truncated, winner, observations = self._compiled_step(actions)
         s = self.state
@@ -174,7 +199,7 @@ class VectorFight:
             self._reset_fights(index)
             self._observe_into(observations, index)
             if images is not None:
-                self._raster.render(self.state, index, images)
+                self._raster.render(self.state, index, images, self.pixel_seats)
         return self._compose(observations, images), rewards, terminated, truncated, info
 
     def advance(self, actions: np.ndarray):
@@ -217,12 +242,14 @@ class VectorFight:
         return self._compose(out, self._images(self._all))
 
     def _images(self, index: np.ndarray) -> np.ndarray | None:
-        """Both fighters' images of the fights `index` (N, 2, H, W, C), None without pixels."""
+        """The images of the fights `index`, (N, 2, H, W, C) or with `pixel_seats` (N, H, W, C);
+        None without pixels."""
         if self._raster is None:
             return None
         spec = self.pixels
-        out = np.empty((self.num_fights, 2, spec.height, spec.width, spec.channels), np.uint8)
-        self._raster.render(self.state, index, out)
+        seats = () if self.pixel_seats is not None else (2,)
+        out = np.empty((self.num_fights, *seats, spec.height, spec.width, spec.channels), np.uint8)
+        self._raster.render(self.state, index, out, self.pixel_seats)
         return out
 
     def _compose(self, vectors: np.ndarray, images: np.ndarray | None) -> Any:

@@ -1,0 +1,156 @@
+"""The league recipe, measured against issue 12's targets: train it, then test it from outside.
+
+    python -m bench.league_recipe                          # train 15 min, then measure (~25 min)
+    python -m bench.league_recipe --config selfplay        # self-play from scratch
+    python -m bench.league_recipe --model runs/league/final.zip   # measure a trained model only
+    python -m bench.league_recipe --quick                  # seconds: proves the path works (CI)
+
+For the model it prints and writes to OUT/result.json (OUT: runs/recipe/league_CONFIG):
+- its win rate against every scripted fighter over `--games` batched games (half in each seat,
+  `batch_match`), sampling its actions and taking the argmax, with 95% Wilson intervals;
+- an Elo round-robin of the model (argmax) and every scripted fighter, `--elo-games` a pairing;
+- its style over `--style-games` games against each (`agents.style_report`): the punches and kicks
+  it landed, summed, and their shares;
+- unless `--exploit-minutes 0`: a fresh exploiter's win rate over its training against the
+  model's argmax and sampled play (`agents.exploit`), `--exploit-minutes` each.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+from pathlib import Path
+from typing import Any
+
+from agents.exploit import exploit
+from agents.league import load_league_config, train_league
+from agents.style_report import style_rows
+from vooga_env.game.config import load_config
+from vooga_env.policies import SCRIPTED
+from vooga_env.policies.models import BatchPolicy, FrozenPolicy, load_model
+from vooga_env.tools.batch_match import batch_match
+from vooga_env.tools.elo import round_robin
+from vooga_env.tools.files import atomic_write_text
+
+PLAYS = {"sampled": False, "argmax": True}
+
+
+def win_rates(model: Path, games: int, seed: int) -> dict[str, dict[str, Any]]:
+    """play -> scripted fighter -> batch_match's result for the model."""
+    network = load_model(model)
+    rates: dict[str, dict[str, Any]] = {}
+    for play, deterministic in PLAYS.items():
+        rates[play] = {}
+        for offset, name in enumerate(SCRIPTED):
+            policy = FrozenPolicy(network, "model", deterministic)
+            policy.reset(seed + offset)
+            rates[play][name] = batch_match(BatchPolicy(policy), name, games, seed + 1000 * offset)
+    return rates
+
+
+def style(model: Path, games: int, seed: int) -> dict[str, Any]:
+    """Punches and kicks the model landed and tried against all the scripted fighters."""
+    network = load_model(model)
+    versions = {play: FrozenPolicy(network, "model", det) for play, det in PLAYS.items()}
+    opponents = {name: name for name in SCRIPTED}
+    rows = style_rows(versions, opponents, games, seed, load_config("default"))
+    totals = {
+        attack: {
+            key: sum(row["attacks"][attack][key] for row in rows) for key in ("landed", "attempted")
+        }
+        for attack in ("punch", "kick")
+    }
+    landed = max(sum(total["landed"] for total in totals.values()), 1)
+    for total in totals.values():
+        total["share_of_landed"] = total["landed"] / landed
+    return {"games": len(rows) * games, "attacks": totals}
+
+
+def measure(model: Path, args: argparse.Namespace) -> dict[str, Any]:
+    fight = load_config("default")
+    result: dict[str, Any] = {"model": str(model), "win_rates": win_rates(model, args.games, 7)}
+    entrants = {"model": str(model), **{name: name for name in SCRIPTED}}
+    table = round_robin(entrants, args.elo_games, 11).table
+    result["elo"] = [{"name": name, "rating": rating} for name, rating in table.ranking()]
+    result["style"] = style(model, args.style_games, 13)
+    if args.exploit_minutes:
+        result["exploit"] = {
+            play: exploit(
+                str(model), fight, args.exploit_minutes, evals=args.exploit_evals,
+                eval_games=args.exploit_games, seed=3, sampled=not deterministic,
+            )["curve"]
+            for play, deterministic in PLAYS.items()
+        }  # fmt: skip
+    return result
+
+
+def report(result: dict[str, Any]) -> str:
+    lines = [f"{result['model']}: win % against each scripted fighter (95% CI)"]
+    for play, rates in result["win_rates"].items():
+        cells = [
+            f"{name} {100 * r['win_rate']:.0f} ({100 * r['ci95'][0]:.0f}-{100 * r['ci95'][1]:.0f})"
+            for name, r in rates.items()
+        ]
+        lines.append(f"  {play}: " + ", ".join(cells))
+    ranks = [row["name"] for row in result["elo"]]
+    lines.append(
+        f"Elo: rank {ranks.index('model') + 1} of {len(ranks)}: "
+        + ", ".join(f"{row['name']} {row['rating']:.0f}" for row in result["elo"])
+    )
+    attacks = result["style"]["attacks"]
+    landed = [
+        f"{plural} {a['landed']} of {a['attempted']} tried ({100 * a['share_of_landed']:.1f}% of "
+        "its hits)"
+        for plural, a in (("punches", attacks["punch"]), ("kicks", attacks["kick"]))
+    ]
+    lines.append(f"landed over {result['style']['games']} games: " + ", ".join(landed))
+    for play, curve in result.get("exploit", {}).items():
+        marks = ", ".join(f"{row['minutes']:.1f} min {100 * _best(row):.0f}%" for row in curve)
+        lines.append(f"exploiter against its {play} play (its better of sampled/argmax): {marks}")
+    return "\n".join(lines)
+
+
+def _best(row: dict[str, Any]) -> float:
+    return max(row["sampled"]["win_rate"], row["argmax"]["win_rate"])
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--config", default="default", help="a name in configs/league or a path")
+    parser.add_argument("--model", type=Path, help="measure this model; no training")
+    parser.add_argument("--seed", type=int, help="the league's seed (default: the config's)")
+    parser.add_argument("--minutes", type=float, default=15.0)
+    parser.add_argument("--games", type=int, default=200)
+    parser.add_argument("--elo-games", type=int, default=20)
+    parser.add_argument("--style-games", type=int, default=20)
+    parser.add_argument("--exploit-minutes", type=float, default=5.0, help="0: no exploiter")
+    parser.add_argument("--exploit-evals", type=int, default=5, help="marks through its budget")
+    parser.add_argument("--exploit-games", type=int, default=100, help="games a mark (even)")
+    parser.add_argument("--out", type=Path, help="run folder (default runs/recipe/league_CONFIG)")
+    parser.add_argument("--quick", action="store_true", help="the smoke league, a few games")
+    args = parser.parse_args(argv)
+    if args.quick:
+        args.config, args.minutes, args.games = "smoke", 1.0, 4
+        args.elo_games, args.style_games, args.exploit_minutes = 1, 1, 0.02
+        args.exploit_evals, args.exploit_games = 1, 4
+    config = load_league_config(args.config, seed=args.seed)
+    args.out = args.out or Path("runs/recipe") / f"league_{args.config}"
+    result: dict[str, Any] = {"config": config.name}
+    model = args.model
+    if model is None:
+        start = time.monotonic()
+        model = train_league(config, args.out, progress=not args.quick, minutes=args.minutes,
+                             overwrite=True)  # fmt: skip
+        result["train_minutes"] = (time.monotonic() - start) / 60.0
+        result["steps"] = json.loads((args.out / "train_state.json").read_text())["num_timesteps"]
+    args.out.mkdir(parents=True, exist_ok=True)
+    result.update(measure(model, args))
+    atomic_write_text(args.out / "result.json", json.dumps(result, indent=2))
+    print(report(result))
+    print(f"wrote {args.out / 'result.json'}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
