@@ -23,7 +23,8 @@ import time
 from pathlib import Path
 from typing import Any
 
-from agents.exploit import exploit
+from agents.common import _non_negative, _positive
+from agents.exploit import _even, _positive_float, exploit
 from agents.league import load_league_config, train_league
 from agents.style_report import style_rows
 from vooga_env.game.config import load_config
@@ -119,17 +120,21 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--config", default="default", help="a name in configs/league or a path")
     parser.add_argument("--model", type=Path, help="measure this model; no training")
-    parser.add_argument("--seed", type=int, help="the league's seed (default: the config's)")
-    parser.add_argument("--minutes", type=float, default=15.0)
-    parser.add_argument("--games", type=int, default=200)
-    parser.add_argument("--elo-games", type=int, default=20)
-    parser.add_argument("--style-games", type=int, default=20)
+    parser.add_argument("--seed", type=_non_negative, help="the league's seed (default: config's)")
+    parser.add_argument("--minutes", type=_positive_float, default=15.0)
+    parser.add_argument("--games", type=_positive, default=200)
+    parser.add_argument("--elo-games", type=_positive, default=20)
+    parser.add_argument("--style-games", type=_positive, default=20)
     parser.add_argument("--exploit-minutes", type=float, default=5.0, help="0: no exploiter")
-    parser.add_argument("--exploit-evals", type=int, default=5, help="marks through its budget")
-    parser.add_argument("--exploit-games", type=int, default=100, help="games a mark (even)")
+    parser.add_argument("--exploit-evals", type=_positive, default=5, help="marks in its budget")
+    parser.add_argument("--exploit-games", type=_even, default=100, help="games a mark (even)")
     parser.add_argument("--out", type=Path, help="run folder (default runs/recipe/league_CONFIG)")
     parser.add_argument("--quick", action="store_true", help="the smoke league, a few games")
     args = parser.parse_args(argv)
+    if args.exploit_minutes < 0:
+        parser.error(
+            f"--exploit-minutes: must be >= 0 (0: no exploiter), got {args.exploit_minutes}"
+        )
     if args.quick:
         args.config, args.minutes, args.games = "smoke", 1.0, 4
         args.elo_games, args.style_games, args.exploit_minutes = 1, 1, 0.02

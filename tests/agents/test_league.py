@@ -172,3 +172,19 @@ def test_the_league_benchmark_measures_every_target(tmp_path):
     for play in ("sampled", "argmax"):
         curve = result["exploit"][play]
         assert curve[0]["steps"] == 0 and curve[-1]["steps"] > 0
+
+
+@pytest.mark.parametrize(
+    ("flag", "message"),
+    [
+        (["--exploit-games", "3"], "must be an even number >= 2, got 3"),
+        (["--games", "0"], "must be >= 1, got 0"),
+        (["--exploit-minutes", "-1"], "--exploit-minutes: must be >= 0"),
+    ],
+)
+def test_the_league_benchmark_refuses_bad_flags_by_name(flag, message, capsys):
+    from bench import league_recipe
+
+    with pytest.raises(SystemExit) as stop:
+        league_recipe.main(flag)
+    assert stop.value.code == 2 and message in capsys.readouterr().err
