@@ -37,9 +37,8 @@ from vooga_env.tools.files import atomic_write_text
 PLAYS = {"sampled": False, "argmax": True}
 
 
-def win_rates(model: Path, games: int, seed: int) -> dict[str, dict[str, Any]]:
+def win_rates(network: Any, games: int, seed: int) -> dict[str, dict[str, Any]]:
     """play -> scripted fighter -> batch_match's result for the model."""
-    network = load_model(model)
     rates: dict[str, dict[str, Any]] = {}
     for play, deterministic in PLAYS.items():
         rates[play] = {}
@@ -50,9 +49,8 @@ def win_rates(model: Path, games: int, seed: int) -> dict[str, dict[str, Any]]:
     return rates
 
 
-def style(model: Path, games: int, seed: int) -> dict[str, Any]:
+def style(network: Any, games: int, seed: int) -> dict[str, Any]:
     """Punches and kicks the model landed and tried against all the scripted fighters."""
-    network = load_model(model)
     versions = {play: FrozenPolicy(network, "model", det) for play, det in PLAYS.items()}
     opponents = {name: name for name in SCRIPTED}
     rows = style_rows(versions, opponents, games, seed, load_config("default"))
@@ -70,11 +68,12 @@ def style(model: Path, games: int, seed: int) -> dict[str, Any]:
 
 def measure(model: Path, args: argparse.Namespace) -> dict[str, Any]:
     fight = load_config("default")
-    result: dict[str, Any] = {"model": str(model), "win_rates": win_rates(model, args.games, 7)}
+    network = load_model(model)
+    result: dict[str, Any] = {"model": str(model), "win_rates": win_rates(network, args.games, 7)}
     entrants = {"model": str(model), **{name: name for name in SCRIPTED}}
     table = round_robin(entrants, args.elo_games, 11).table
     result["elo"] = [{"name": name, "rating": rating} for name, rating in table.ranking()]
-    result["style"] = style(model, args.style_games, 13)
+    result["style"] = style(network, args.style_games, 13)
     if args.exploit_minutes:
         result["exploit"] = {
             play: exploit(

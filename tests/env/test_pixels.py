@@ -277,6 +277,8 @@ BAD = [
         ({"pixel_seats": 2}, "pixel_seats = 2 is not allowed: 0, 1, 'alternate' or one seat"),
         ({"pixel_seats": [0, 1, 0]}, r"pixel_seats = \[0, 1, 0\] is not allowed"),
         ({"pixel_seats": "both"}, "pixel_seats = 'both' is not allowed"),
+        ({"pixel_seats": True}, "pixel_seats = True is not allowed"),
+        ({"pixel_seats": [0.0, 1.0]}, r"pixel_seats = \[0.0, 1.0\] is not allowed"),
         ({"obs_type": "vector", "pixel_seats": 0}, "pixel_seats is for pixel observations"),
     ],
 )

@@ -103,7 +103,8 @@ class VectorFight:
         array = np.asarray(seats)
         if array.ndim == 0:
             array = np.full(self.num_fights, array)
-        if array.shape != (self.num_fights,) or not np.isin(array, (0, 1)).all():
+        integers = np.issubdtype(array.dtype, np.integer)
+        if not integers or array.shape != (self.num_fights,) or not np.isin(array, (0, 1)).all():
             raise ValueError(
                 f"pixel_seats = {seats!r} is not allowed: 0, 1, 'alternate' or one seat (0 or 1) "
                 f"per fight, {self.num_fights} of them"
@@ -247,8 +248,9 @@ class VectorFight:
         if self._raster is None:
             return None
         spec = self.pixels
-        seats = () if self.pixel_seats is not None else (2,)
-        out = np.empty((self.num_fights, *seats, spec.height, spec.width, spec.channels), np.uint8)
+        seat_axis = () if self.pixel_seats is not None else (2,)
+        shape = (self.num_fights, *seat_axis, spec.height, spec.width, spec.channels)
+        out = np.empty(shape, np.uint8)
         self._raster.render(self.state, index, out, self.pixel_seats)
         return out
 
