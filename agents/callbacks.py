@@ -17,6 +17,29 @@ from .checkpoints import CHECKPOINTS, atomic_write, check_finite, save_checkpoin
 from .train_config import CurriculumConfig, SelfPlayConfig
 
 
+class EntropySchedule(BaseCallback):
+    """PPO's entropy coefficient falling linearly from `start` to `end` over the first `steps`
+    timesteps, then `end` (SB3 schedules the learning rate and clip range, not this).
+
+    Set from the step count before each update, so a resumed run carries on where it was.
+    """
+
+    def __init__(self, start: float, end: float, steps: int) -> None:
+        super().__init__()
+        self.start, self.end, self.steps = start, end, steps
+
+    def coefficient(self, timesteps: int) -> float:
+        done = min(timesteps / self.steps, 1.0)
+        return self.start + (self.end - self.start) * done
+
+    def _on_rollout_end(self) -> None:
+        self.model.ent_coef = self.coefficient(self.num_timesteps)
+        self.logger.record("train/ent_coef_now", self.model.ent_coef)
+
+    def _on_step(self) -> bool:
+        return True
+
+
 def learner_won(info: dict[str, Any]) -> float | None:
     """The learner's score at an episode's end: 1, 0.5 or 0 (None before the end)."""
     winner = info.get("winner")

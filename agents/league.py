@@ -360,7 +360,15 @@ def _run(
     model, league = build(config, folder, state, bool(state), saved)
     every = max(config.checkpoint_every // config.fights, 1)
     return learn_and_save(
-        model, folder, league, every, config.total_timesteps, not state, progress, minutes
+        model,
+        folder,
+        league,
+        every,
+        config.total_timesteps,
+        not state,
+        progress,
+        minutes,
+        config.ppo,
     )
 
 

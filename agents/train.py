@@ -37,7 +37,12 @@ from vooga_env.envs.gym_env import FightEnv
 from vooga_env.game.config import ConfigError
 from vooga_env.policies.models import load_model
 
-from .callbacks import CurriculumCallback, SelfPlayCallback, StateCheckpointCallback
+from .callbacks import (
+    CurriculumCallback,
+    EntropySchedule,
+    SelfPlayCallback,
+    StateCheckpointCallback,
+)
 from .checkpoints import (
     STATE_FILE,
     BrokenRun,
@@ -51,7 +56,7 @@ from .checkpoints import (
     save_checkpoint,
     start_fresh,
 )
-from .train_config import TrainConfig, load_train_config
+from .train_config import PPOConfig, TrainConfig, load_train_config
 
 
 def make_envs(config: TrainConfig, opponent: str = "idle", seed: int | None = None) -> VecEnv:
@@ -203,7 +208,15 @@ def _run(
         )
     every = max(config.checkpoint_every // config.n_envs, 1)
     return learn_and_save(
-        model, folder, opponents, every, config.total_timesteps, not state, progress, minutes
+        model,
+        folder,
+        opponents,
+        every,
+        config.total_timesteps,
+        not state,
+        progress,
+        minutes,
+        config.ppo,
     )
 
 
@@ -216,14 +229,18 @@ def learn_and_save(
     fresh: bool,
     progress: bool,
     minutes: float,
+    ppo: PPOConfig,
 ) -> Path:
     """`model.learn` up to `total_timesteps` against `opponents` (a callback whose state is
     checkpointed with the model): a committed checkpoint at step 0 of a fresh run, every `every`
-    calls, at the end and on the way out; the finished model as `folder/final.zip`."""
+    calls, at the end and on the way out; the finished model as `folder/final.zip`. The entropy
+    coefficient follows `ppo`'s schedule, if it has one."""
     if fresh:
         save_checkpoint(model, folder, [opponents])  # step 0: from here on, --resume works
     checkpoints = StateCheckpointCallback(every, folder, [opponents])
     callbacks = [opponents, checkpoints] + ([StopAfter(minutes)] if minutes else [])
+    if ppo.ent_decay_steps:
+        callbacks.append(EntropySchedule(ppo.ent_coef, ppo.ent_coef_final, ppo.ent_decay_steps))
     remaining = total_timesteps - model.num_timesteps
     try:
         if remaining > 0:

@@ -56,6 +56,10 @@ class PPOConfig:
     gamma: float = 0.99
     gae_lambda: float = 0.95
     ent_coef: float = 0.01
+    # With ent_decay_steps > 0, ent_coef falls linearly to ent_coef_final over that many steps
+    # and stays there: explore early, play near the argmax by the end (callbacks.EntropySchedule).
+    ent_coef_final: float = 0.0
+    ent_decay_steps: int = 0
     clip_range: float = 0.2
     net_arch: tuple[int, ...] = (64, 64)
     normalize_reward: bool = False  # SB3's VecNormalize on rewards only (inference needs nothing)
@@ -68,8 +72,9 @@ class PPOConfig:
         _at_least(self, 1, "n_steps", "n_epochs")
         _at_least(self, 2, "batch_size")  # SB3 normalises advantages over each minibatch
         _within(self, 0.0, 1.0, "gamma", "gae_lambda")
-        if self.ent_coef < 0:
-            _refuse("ent_coef", self.ent_coef, "must be >= 0")
+        for key in ("ent_coef", "ent_coef_final", "ent_decay_steps"):
+            if getattr(self, key) < 0:
+                _refuse(key, getattr(self, key), "must be >= 0")
         if any(width < 1 for width in self.net_arch):
             _refuse("net_arch", list(self.net_arch), "every layer needs >= 1 unit")
 

@@ -41,6 +41,14 @@ TRAIN_CONFIGS = [
     (SMOKE + "[ppo]\ngamma = -0.1\n", "ppo.gamma = -0.1 is not allowed: must be in [0, 1]"),
     (SMOKE + "[ppo]\ngae_lambda = 2\n", "ppo.gae_lambda = 2.0 is not allowed: must be in [0, 1]"),
     (SMOKE + "[ppo]\nent_coef = -0.01\n", "ppo.ent_coef = -0.01 is not allowed: must be >= 0"),
+    (
+        SMOKE + "[ppo]\nent_coef_final = -0.1\n",
+        "ppo.ent_coef_final = -0.1 is not allowed: must be >= 0",
+    ),
+    (
+        SMOKE + "[ppo]\nent_decay_steps = -5\n",
+        "ppo.ent_decay_steps = -5 is not allowed: must be >= 0",
+    ),
     (SMOKE + "[ppo]\nclip_range = 0\n", "ppo.clip_range = 0.0 is not allowed: must be > 0"),
     (SMOKE + "[ppo]\nnet_arch = [0]\n", "ppo.net_arch = [0] is not allowed: every layer needs"),
     (SMOKE + "[ppo]\nnet_arch = [64, -1]\n", "ppo.net_arch = [64, -1] is not allowed"),

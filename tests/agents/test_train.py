@@ -42,6 +42,20 @@ def test_resume_continues_from_the_last_checkpoint(tmp_path):
     assert (tmp_path / "checkpoints" / "ppo_2048_steps.zip").is_file()
 
 
+@pytest.mark.parametrize("resumed", [False, True])
+def test_the_entropy_coefficient_follows_its_schedule_through_a_resume(tmp_path, resumed):
+    text = (ROOT / "configs" / "train" / "smoke.toml").read_text()
+    path = tmp_path / "decay.toml"
+    path.write_text(
+        text.replace("n_epochs = 1", "n_epochs = 1\nent_coef = 0.01\nent_decay_steps = 4096")
+    )
+    if resumed:
+        train(load_train_config(path, total_timesteps=1024), tmp_path / "run", progress=False)
+    final = train(load_train_config(path), tmp_path / "run", resume=resumed, progress=False)
+    # the last update came after 2048 of the 4096 steps: half way from 0.01 to 0
+    assert load_model(final).ent_coef == pytest.approx(0.005)
+
+
 def test_a_fresh_run_never_overwrites_an_old_one_unless_told(tmp_path, capsys):
     config = load_train_config("smoke", total_timesteps=512)
     train(config, tmp_path, progress=False)
