@@ -359,17 +359,7 @@ def _run(
     set_random_seed(config.seed)
     model, league = build(config, folder, state, bool(state), saved)
     every = max(config.checkpoint_every // config.fights, 1)
-    return learn_and_save(
-        model,
-        folder,
-        league,
-        every,
-        config.total_timesteps,
-        not state,
-        progress,
-        minutes,
-        config.ppo,
-    )
+    return learn_and_save(model, folder, league, every, config, not state, progress, minutes)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -56,7 +56,7 @@ from .checkpoints import (
     save_checkpoint,
     start_fresh,
 )
-from .train_config import PPOConfig, TrainConfig, load_train_config
+from .train_config import TrainConfig, load_train_config
 
 
 def make_envs(config: TrainConfig, opponent: str = "idle", seed: int | None = None) -> VecEnv:
@@ -207,17 +207,7 @@ def _run(
             config.curriculum, config.seed, state.get("stage", 0), state.get("results", ())
         )
     every = max(config.checkpoint_every // config.n_envs, 1)
-    return learn_and_save(
-        model,
-        folder,
-        opponents,
-        every,
-        config.total_timesteps,
-        not state,
-        progress,
-        minutes,
-        config.ppo,
-    )
+    return learn_and_save(model, folder, opponents, every, config, not state, progress, minutes)
 
 
 def learn_and_save(
@@ -225,23 +215,24 @@ def learn_and_save(
     folder: Path,
     opponents: BaseCallback,
     every: int,
-    total_timesteps: int,
+    config: Any,
     fresh: bool,
     progress: bool,
     minutes: float,
-    ppo: PPOConfig,
 ) -> Path:
-    """`model.learn` up to `total_timesteps` against `opponents` (a callback whose state is
-    checkpointed with the model): a committed checkpoint at step 0 of a fresh run, every `every`
-    calls, at the end and on the way out; the finished model as `folder/final.zip`. The entropy
-    coefficient follows `ppo`'s schedule, if it has one."""
+    """`model.learn` up to `config.total_timesteps` against `opponents` (a callback whose state
+    is checkpointed with the model): a committed checkpoint at step 0 of a fresh run, every
+    `every` calls, at the end and on the way out; the finished model as `folder/final.zip`. The
+    entropy coefficient follows `config.ppo`'s schedule, if it has one. `config`: a training or
+    league run's config."""
     if fresh:
         save_checkpoint(model, folder, [opponents])  # step 0: from here on, --resume works
     checkpoints = StateCheckpointCallback(every, folder, [opponents])
     callbacks = [opponents, checkpoints] + ([StopAfter(minutes)] if minutes else [])
+    ppo = config.ppo
     if ppo.ent_decay_steps:
         callbacks.append(EntropySchedule(ppo.ent_coef, ppo.ent_coef_final, ppo.ent_decay_steps))
-    remaining = total_timesteps - model.num_timesteps
+    remaining = config.total_timesteps - model.num_timesteps
     try:
         if remaining > 0:
             model.learn(
