@@ -23,7 +23,7 @@ import sys
 import time
 from functools import partial
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 import torch
 from gymnasium.wrappers import ReshapeObservation
@@ -56,7 +56,7 @@ from .checkpoints import (
     save_checkpoint,
     start_fresh,
 )
-from .train_config import TrainConfig, load_train_config
+from .train_config import PPOConfig, TrainConfig, load_train_config
 
 
 def make_envs(config: TrainConfig, opponent: str = "idle", seed: int | None = None) -> VecEnv:
@@ -210,12 +210,22 @@ def _run(
     return learn_and_save(model, folder, opponents, every, config, not state, progress, minutes)
 
 
+class RunLength(Protocol):
+    """What `learn_and_save` reads from a training run's or a league run's config."""
+
+    @property
+    def total_timesteps(self) -> int: ...
+
+    @property
+    def ppo(self) -> PPOConfig: ...
+
+
 def learn_and_save(
     model: PPO,
     folder: Path,
     opponents: BaseCallback,
     every: int,
-    config: Any,
+    config: RunLength,
     fresh: bool,
     progress: bool,
     minutes: float,
@@ -223,8 +233,7 @@ def learn_and_save(
     """`model.learn` up to `config.total_timesteps` against `opponents` (a callback whose state
     is checkpointed with the model): a committed checkpoint at step 0 of a fresh run, every
     `every` calls, at the end and on the way out; the finished model as `folder/final.zip`. The
-    entropy coefficient follows `config.ppo`'s schedule, if it has one. `config`: a training or
-    league run's config."""
+    entropy coefficient follows `config.ppo`'s schedule, if it has one."""
     if fresh:
         save_checkpoint(model, folder, [opponents])  # step 0: from here on, --resume works
     checkpoints = StateCheckpointCallback(every, folder, [opponents])
