@@ -1,6 +1,6 @@
 """The league recipe, measured against issue 12's targets: train it, then test it from outside.
 
-    python -m bench.league_recipe                          # train 15 min, then measure (~25 min)
+    python -m bench.league_recipe                          # train 15 min, then measure (~35 min)
     python -m bench.league_recipe --config selfplay        # self-play from scratch
     python -m bench.league_recipe --model runs/league/final.zip   # measure a trained model only
     python -m bench.league_recipe --quick                  # seconds: proves the path works (CI)
@@ -12,7 +12,8 @@ For the model it prints and writes to OUT/result.json (OUT: runs/recipe/league_C
 - its style over `--style-games` games against each (`agents.style_report`): the punches and kicks
   it landed, summed, and their shares;
 - unless `--exploit-minutes 0`: a fresh exploiter's win rate over its training against the
-  model's argmax and sampled play (`agents.exploit`), `--exploit-minutes` each.
+  model's argmax and sampled play (`agents.exploit`), `--exploit-minutes` each, one exploiter
+  for each of `--exploit-seeds` (one exploiter held to 0% is no proof: another seed may win).
 """
 
 from __future__ import annotations
@@ -67,7 +68,6 @@ def style(network: Any, games: int, seed: int) -> dict[str, Any]:
 
 
 def measure(model: Path, args: argparse.Namespace) -> dict[str, Any]:
-    fight = load_config("default")
     network = load_model(model)
     result: dict[str, Any] = {"model": str(model), "win_rates": win_rates(network, args.games, 7)}
     entrants = {"model": str(model), **{name: name for name in SCRIPTED}}
@@ -76,13 +76,21 @@ def measure(model: Path, args: argparse.Namespace) -> dict[str, Any]:
     result["style"] = style(network, args.style_games, 13)
     if args.exploit_minutes:
         result["exploit"] = {
-            play: exploit(
-                str(model), fight, args.exploit_minutes, evals=args.exploit_evals,
-                eval_games=args.exploit_games, seed=3, sampled=not deterministic,
-            )["curve"]
+            play: [
+                {"seed": seed, "curve": exploit_curve(model, not deterministic, seed, args)}
+                for seed in args.exploit_seeds
+            ]
             for play, deterministic in PLAYS.items()
-        }  # fmt: skip
+        }
     return result
+
+
+def exploit_curve(model: Path, sampled: bool, seed: int, args: argparse.Namespace) -> Any:
+    """A fresh exploiter's win rates at each mark against the model's sampled or argmax play."""
+    return exploit(
+        str(model), load_config("default"), args.exploit_minutes, evals=args.exploit_evals,
+        eval_games=args.exploit_games, seed=seed, sampled=sampled,
+    )["curve"]  # fmt: skip
 
 
 def report(result: dict[str, Any]) -> str:
@@ -105,9 +113,13 @@ def report(result: dict[str, Any]) -> str:
         for plural, a in (("punches", attacks["punch"]), ("kicks", attacks["kick"]))
     ]
     lines.append(f"landed over {result['style']['games']} games: " + ", ".join(landed))
-    for play, curve in result.get("exploit", {}).items():
-        marks = ", ".join(f"{row['minutes']:.1f} min {100 * _best(row):.0f}%" for row in curve)
-        lines.append(f"exploiter against its {play} play (its better of sampled/argmax): {marks}")
+    for play, runs in result.get("exploit", {}).items():
+        for run in runs:
+            marks = ", ".join(f"{r['minutes']:.1f} min {100 * _best(r):.0f}%" for r in run["curve"])
+            lines.append(
+                f"exploiter (seed {run['seed']}) against its {play} play (its better of "
+                f"sampled/argmax): {marks}"
+            )
     return "\n".join(lines)
 
 
@@ -127,6 +139,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--exploit-minutes", type=float, default=5.0, help="0: no exploiter")
     parser.add_argument("--exploit-evals", type=_positive, default=5, help="marks in its budget")
     parser.add_argument("--exploit-games", type=_even, default=100, help="games a mark (even)")
+    parser.add_argument(
+        "--exploit-seeds", type=_non_negative, nargs="+", default=[3, 4], metavar="SEED",
+        help="one exploiter a seed, against each play (default: 3 4)",
+    )  # fmt: skip
     parser.add_argument("--out", type=Path, help="run folder (default runs/recipe/league_CONFIG)")
     parser.add_argument("--quick", action="store_true", help="the smoke league, a few games")
     args = parser.parse_args(argv)
@@ -137,7 +153,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.quick:
         args.config, args.minutes, args.games = "smoke", 1.0, 4
         args.elo_games, args.style_games, args.exploit_minutes = 1, 1, 0.02
-        args.exploit_evals, args.exploit_games = 1, 4
+        args.exploit_evals, args.exploit_games, args.exploit_seeds = 1, 4, [3]
     config = load_league_config(args.config, seed=args.seed)
     args.out = args.out or Path("runs/recipe") / f"league_{args.config}"
     result: dict[str, Any] = {"config": config.name}

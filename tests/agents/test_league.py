@@ -170,8 +170,8 @@ def test_the_league_benchmark_measures_every_target(tmp_path):
     assert set(attacks) == {"punch", "kick"} and result["style"]["games"] == 2 * len(SCRIPTED)
     assert all(attack["landed"] <= attack["attempted"] for attack in attacks.values())
     for play in ("sampled", "argmax"):
-        curve = result["exploit"][play]
-        assert curve[0]["steps"] == 0 and curve[-1]["steps"] > 0
+        (run,) = result["exploit"][play]
+        assert run["seed"] == 3 and run["curve"][0]["steps"] == 0 and run["curve"][-1]["steps"] > 0
 
 
 @pytest.mark.parametrize(
@@ -180,6 +180,7 @@ def test_the_league_benchmark_measures_every_target(tmp_path):
         (["--exploit-games", "3"], "must be an even number >= 2, got 3"),
         (["--games", "0"], "must be >= 1, got 0"),
         (["--exploit-minutes", "-1"], "--exploit-minutes: must be >= 0"),
+        (["--exploit-seeds", "-2"], "must be >= 0, got -2"),
     ],
 )
 def test_the_league_benchmark_refuses_bad_flags_by_name(flag, message, capsys):
