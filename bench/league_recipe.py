@@ -50,11 +50,11 @@ def win_rates(network: Any, games: int, seed: int) -> dict[str, dict[str, Any]]:
     return rates
 
 
-def style(network: Any, games: int, seed: int) -> dict[str, Any]:
+def style(network: Any, fight: Any, games: int, seed: int) -> dict[str, Any]:
     """Punches and kicks the model landed and tried against all the scripted fighters."""
     versions = {play: FrozenPolicy(network, "model", det) for play, det in PLAYS.items()}
     opponents = {name: name for name in SCRIPTED}
-    rows = style_rows(versions, opponents, games, seed, load_config("default"))
+    rows = style_rows(versions, opponents, games, seed, fight)
     totals = {
         attack: {
             key: sum(row["attacks"][attack][key] for row in rows) for key in ("landed", "attempted")
@@ -68,16 +68,17 @@ def style(network: Any, games: int, seed: int) -> dict[str, Any]:
 
 
 def measure(model: Path, args: argparse.Namespace) -> dict[str, Any]:
+    fight = load_config("default")
     network = load_model(model)
     result: dict[str, Any] = {"model": str(model), "win_rates": win_rates(network, args.games, 7)}
     entrants = {"model": str(model), **{name: name for name in SCRIPTED}}
     table = round_robin(entrants, args.elo_games, 11).table
     result["elo"] = [{"name": name, "rating": rating} for name, rating in table.ranking()]
-    result["style"] = style(network, args.style_games, 13)
+    result["style"] = style(network, fight, args.style_games, 13)
     if args.exploit_minutes:
         result["exploit"] = {
             play: [
-                {"seed": seed, "curve": exploit_curve(model, not deterministic, seed, args)}
+                {"seed": seed, "curve": exploit_curve(model, fight, not deterministic, seed, args)}
                 for seed in args.exploit_seeds
             ]
             for play, deterministic in PLAYS.items()
@@ -85,10 +86,12 @@ def measure(model: Path, args: argparse.Namespace) -> dict[str, Any]:
     return result
 
 
-def exploit_curve(model: Path, sampled: bool, seed: int, args: argparse.Namespace) -> Any:
+def exploit_curve(
+    model: Path, fight: Any, sampled: bool, seed: int, args: argparse.Namespace
+) -> Any:
     """A fresh exploiter's win rates at each mark against the model's sampled or argmax play."""
     return exploit(
-        str(model), load_config("default"), args.exploit_minutes, evals=args.exploit_evals,
+        str(model), fight, args.exploit_minutes, evals=args.exploit_evals,
         eval_games=args.exploit_games, seed=seed, sampled=sampled,
     )["curve"]  # fmt: skip
 
