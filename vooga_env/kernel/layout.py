@@ -70,7 +70,7 @@ for _names in (FIGHTER_FLOATS, FIGHTER_INTS, FIGHTER_FLAGS, FIGHT_COUNTERS, FIGH
 # then one shift per reaction that can shift a fighter in a frame: the push's separation and its
 # redirect (the one pair of fighters), and the opponent's hitbox (one hit a frame at most). A
 # velocity's terms are fewer (itself, the push's change, the hit's), so one size serves both.
-# numba does not bounds-check, so tests/vector/test_stages.py checks that no stage adds more.
+# numba does not bounds-check, so tests/kernel/test_stages.py checks that no stage adds more.
 FIXED_TERMS = 3
 SHIFTS = {"separation": 1, "push": 1, "hit": 1}
 MAX_TERMS = FIXED_TERMS + sum(SHIFTS.values())

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tests.vector.reference import SCENARIOS, load, record, summary
+from tests.kernel.reference import SCENARIOS, load, record, summary
 
 
 def assert_identical(got: dict, expected: dict) -> None:

@@ -5,7 +5,7 @@ so that hits, blocks, ring-outs, KOs, truncations and auto-resets all happen). `
 with the single ParallelEnv and returns every step as arrays; `replay` plays recorded actions
 again. The .npz files in `data/` were written by the code as it was before the speed work:
 
-    python -m tests.vector.reference            # rewrite data/*.npz (only when the rules change)
+    python -m tests.kernel.reference            # rewrite data/*.npz (only when the rules change)
 """
 
 from __future__ import annotations

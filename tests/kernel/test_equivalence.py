@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import vooga_env
-from tests.vector.reference import INFO_KEYS, SCENARIOS, WINNERS, load, summary
+from tests.kernel.reference import INFO_KEYS, SCENARIOS, WINNERS, load, summary
 from vooga_env.game.outcome import Outcome
 from vooga_env.kernel import VectorFight
 from vooga_env.policies import make_policy
