@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from abc import abstractmethod
 from collections import deque
 from collections.abc import Sequence
 from pathlib import Path
@@ -9,6 +10,7 @@ from typing import Any
 
 import numpy as np
 from stable_baselines3.common.callbacks import BaseCallback, CheckpointCallback
+from stable_baselines3.common.utils import ConstantSchedule
 
 from vooga_env.policies.models import FrozenPolicy, load_model
 from vooga_env.tools.elo import START_RATING, update
@@ -17,11 +19,13 @@ from .checkpoints import CHECKPOINTS, atomic_write, check_finite, save_checkpoin
 from .train_config import CurriculumConfig, SelfPlayConfig
 
 
-class EntropySchedule(BaseCallback):
-    """PPO's entropy coefficient falling linearly from `start` to `end` over the first `steps`
-    timesteps, then `end` (SB3 schedules the learning rate and clip range, not this).
+class StepDecay(BaseCallback):
+    """A PPO setting falling linearly from `start` to `end` over the first `steps` timesteps,
+    then `end`; `apply` sets it on the model.
 
-    Set from the step count before each update, so a resumed run carries on where it was.
+    Set from the step count before each update, so a resumed run carries on where it was (SB3's
+    own schedules follow the fraction of `total_timesteps`, which a run stopped by the clock
+    never reaches).
     """
 
     def __init__(self, start: float, end: float, steps: int) -> None:
@@ -33,11 +37,31 @@ class EntropySchedule(BaseCallback):
         return self.start + (self.end - self.start) * done
 
     def _on_rollout_end(self) -> None:
-        self.model.ent_coef = self.coefficient(self.num_timesteps)
-        self.logger.record("train/ent_coef_now", self.model.ent_coef)
+        self.apply(self.coefficient(self.num_timesteps))
+
+    @abstractmethod
+    def apply(self, value: float) -> None:
+        """Set the setting on `self.model`."""
 
     def _on_step(self) -> bool:
         return True
+
+
+class EntropySchedule(StepDecay):
+    """PPO's entropy coefficient (SB3 schedules the learning rate and clip range, not this)."""
+
+    def apply(self, value: float) -> None:
+        self.model.ent_coef = value
+        self.logger.record("train/ent_coef_now", value)
+
+
+class LearningRateSchedule(StepDecay):
+    """PPO's learning rate, so that the last steps of a run refine the policy instead of
+    moving it by tens of points between checkpoints (SB3 logs it as train/learning_rate)."""
+
+    def apply(self, value: float) -> None:
+        self.model.learning_rate = value
+        self.model.lr_schedule = ConstantSchedule(value)
 
 
 def learner_won(info: dict[str, Any]) -> float | None:

@@ -40,6 +40,7 @@ from vooga_env.policies.models import load_model
 from .callbacks import (
     CurriculumCallback,
     EntropySchedule,
+    LearningRateSchedule,
     SelfPlayCallback,
     StateCheckpointCallback,
 )
@@ -233,7 +234,7 @@ def learn_and_save(
     """`model.learn` up to `config.total_timesteps` against `opponents` (a callback whose state
     is checkpointed with the model): a committed checkpoint at step 0 of a fresh run, every
     `every` calls, at the end and on the way out; the finished model as `folder/final.zip`. The
-    entropy coefficient follows `config.ppo`'s schedule, if it has one."""
+    entropy coefficient and the learning rate follow `config.ppo`'s schedules, if it has them."""
     if fresh:
         save_checkpoint(model, folder, [opponents])  # step 0: from here on, --resume works
     checkpoints = StateCheckpointCallback(every, folder, [opponents])
@@ -241,6 +242,10 @@ def learn_and_save(
     ppo = config.ppo
     if ppo.ent_decay_steps:
         callbacks.append(EntropySchedule(ppo.ent_coef, ppo.ent_coef_final, ppo.ent_decay_steps))
+    if ppo.lr_decay_steps:
+        callbacks.append(
+            LearningRateSchedule(ppo.learning_rate, ppo.learning_rate_final, ppo.lr_decay_steps)
+        )
     remaining = config.total_timesteps - model.num_timesteps
     try:
         if remaining > 0:

@@ -60,6 +60,10 @@ class PPOConfig:
     # and stays there: explore early, play near the argmax by the end (callbacks.EntropySchedule).
     ent_coef_final: float = 0.0
     ent_decay_steps: int = 0
+    # Likewise, with lr_decay_steps > 0 the learning rate falls to learning_rate_final
+    # (callbacks.LearningRateSchedule): a policy that settles instead of swinging at the end.
+    learning_rate_final: float = 0.0
+    lr_decay_steps: int = 0
     clip_range: float = 0.2
     net_arch: tuple[int, ...] = (64, 64)
     normalize_reward: bool = False  # SB3's VecNormalize on rewards only (inference needs nothing)
@@ -72,7 +76,13 @@ class PPOConfig:
         _at_least(self, 1, "n_steps", "n_epochs")
         _at_least(self, 2, "batch_size")  # SB3 normalises advantages over each minibatch
         _within(self, 0.0, 1.0, "gamma", "gae_lambda")
-        for key in ("ent_coef", "ent_coef_final", "ent_decay_steps"):
+        for key in (
+            "ent_coef",
+            "ent_coef_final",
+            "ent_decay_steps",
+            "learning_rate_final",
+            "lr_decay_steps",
+        ):
             if getattr(self, key) < 0:
                 _refuse(key, getattr(self, key), "must be >= 0")
         if any(width < 1 for width in self.net_arch):

@@ -49,6 +49,14 @@ TRAIN_CONFIGS = [
         SMOKE + "[ppo]\nent_decay_steps = -5\n",
         "ppo.ent_decay_steps = -5 is not allowed: must be >= 0",
     ),
+    (
+        SMOKE + "[ppo]\nlearning_rate_final = -1e-5\n",
+        "ppo.learning_rate_final = -1e-05 is not allowed: must be >= 0",
+    ),
+    (
+        SMOKE + "[ppo]\nlr_decay_steps = -5\n",
+        "ppo.lr_decay_steps = -5 is not allowed: must be >= 0",
+    ),
     (SMOKE + "[ppo]\nclip_range = 0\n", "ppo.clip_range = 0.0 is not allowed: must be > 0"),
     (SMOKE + "[ppo]\nnet_arch = [0]\n", "ppo.net_arch = [0] is not allowed: every layer needs"),
     (SMOKE + "[ppo]\nnet_arch = [64, -1]\n", "ppo.net_arch = [64, -1] is not allowed"),

@@ -43,17 +43,24 @@ def test_resume_continues_from_the_last_checkpoint(tmp_path):
 
 
 @pytest.mark.parametrize("resumed", [False, True])
-def test_the_entropy_coefficient_follows_its_schedule_through_a_resume(tmp_path, resumed):
+def test_entropy_and_learning_rate_follow_their_schedules_through_a_resume(tmp_path, resumed):
     text = (ROOT / "configs" / "train" / "smoke.toml").read_text()
     path = tmp_path / "decay.toml"
-    path.write_text(
-        text.replace("n_epochs = 1", "n_epochs = 1\nent_coef = 0.01\nent_decay_steps = 4096")
-    )
+    schedules = [
+        "ent_coef = 0.01",
+        "ent_decay_steps = 4096",
+        "learning_rate = 4e-4",
+        "learning_rate_final = 1e-4",
+        "lr_decay_steps = 4096",
+    ]
+    path.write_text(text.replace("n_epochs = 1", "\n".join(["n_epochs = 1", *schedules])))
     if resumed:
         train(load_train_config(path, total_timesteps=1024), tmp_path / "run", progress=False)
     final = train(load_train_config(path), tmp_path / "run", resume=resumed, progress=False)
-    # the last update came after 2048 of the 4096 steps: half way from 0.01 to 0
-    assert load_model(final).ent_coef == pytest.approx(0.005)
+    model = load_model(final)
+    # the last update came after 2048 of the 4096 steps: half way along both schedules
+    assert model.ent_coef == pytest.approx(0.005)
+    assert model.policy.optimizer.param_groups[0]["lr"] == pytest.approx(2.5e-4)
 
 
 def test_a_fresh_run_never_overwrites_an_old_one_unless_told(tmp_path, capsys):
