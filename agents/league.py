@@ -29,7 +29,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import torch
 from stable_baselines3 import PPO
 from stable_baselines3.common.callbacks import BaseCallback
 from stable_baselines3.common.utils import set_random_seed
@@ -55,6 +54,7 @@ from .checkpoints import (
 )
 from .exploit import make_learner
 from .league_pool import WEIGHTINGS, Pool, PoolOpponent
+from .league_select import SELECTION_FILE, league_opponents, ship_best
 from .train import learn_and_save, load_init, start_from
 from .train_config import PPOConfig
 
@@ -81,6 +81,10 @@ class LeagueConfig:
     # in the order of `scripted`, the next once the learner's mean score over the scripted
     # members present (a full `results_window` of games each) reaches this.
     join_win_rate: float = 0.0
+    # Above 0: at the end, the last `window` snapshots and the final model each play this many
+    # games (even: half in each seat) against every scripted fighter and exploiter, sampled and
+    # argmax, and the one with the best worst win rate is shipped (agents.league_select).
+    select_games: int = 0
 
     def __post_init__(self) -> None:
         for name in self.scripted:
@@ -91,6 +95,11 @@ class LeagueConfig:
         for key in ("save_steps", "window", "results_window", "exploiter_steps", "exploiters"):
             if getattr(self, key) <= 0:
                 raise ConfigError(f"{key} = {getattr(self, key)} is not allowed: must be > 0")
+        if self.select_games < 0 or self.select_games % 2:
+            raise ConfigError(
+                f"select_games = {self.select_games} is not allowed: an even number >= 0 "
+                "(0: ship the last model)"
+            )
         if self.exploiter_every < 0:
             raise ConfigError(f"exploiter_every = {self.exploiter_every} is not allowed: >= 0")
         if self.exploiter_play not in EXPLOITER_PLAYS:
@@ -355,11 +364,27 @@ def _run(
     progress: bool,
     minutes: float,
 ) -> Path:
-    torch.set_num_threads(1)
     set_random_seed(config.seed)
-    model, league = build(config, folder, state, bool(state), saved)
-    every = max(config.checkpoint_every // config.fights, 1)
-    return learn_and_save(model, folder, league, every, config, not state, progress, minutes)
+    with common.one_core():
+        model, league = build(config, folder, state, bool(state), saved)
+        every = max(config.checkpoint_every // config.fights, 1)
+        learn_and_save(model, folder, league, every, config, not state, progress, minutes)
+        return select(config, folder, league.snapshots, league.exploiters)
+
+
+def select(
+    config: LeagueRunConfig, folder: Path, snapshots: list[str], exploiters: list[str]
+) -> Path:
+    """final.zip as it is, or with `select_games` the best of it and the pool's `snapshots`
+    against the scripted fighters and `exploiters` (agents.league_select)."""
+    final = folder / "final.zip"
+    games = config.league.select_games
+    if not games or not (config.league.scripted or exploiters):
+        return final
+    opponents = league_opponents(folder, list(config.league.scripted), exploiters)
+    candidates = [folder / "snapshots" / f"{name}.zip" for name in snapshots]
+    fight = load_config(config.fight)
+    return ship_best(folder, [*candidates, final], opponents, games, config.seed, fight)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -398,6 +423,8 @@ def main(argv: list[str] | None = None) -> int:
     except (FileNotFoundError, FileExistsError, ConfigError, BrokenRun, RunLocked) as error:
         parser.error(str(error))
     print(format_pool(json.loads((folder / STATE_FILE).read_text())))
+    if (folder / SELECTION_FILE).is_file():
+        print(format_selection(json.loads((folder / SELECTION_FILE).read_text())))
     print(f"trained: {final}")
     return 0
 
@@ -413,6 +440,21 @@ def format_pool(state: dict[str, Any]) -> str:
         [
             f"the pool after {state['num_timesteps']} steps (learner Elo {learner:.0f})",
             common.table(("opponent", "recent games", "learner score %", "Elo"), rows),
+        ]
+    )
+
+
+def format_selection(selection: dict[str, Any]) -> str:
+    """Each candidate's worst and mean win rate over the selection's games, and the one shipped."""
+    rows = [
+        (name, 100.0 * row["worst"], 100.0 * row["mean"])
+        for name, row in selection["candidates"].items()
+    ]
+    return "\n\n".join(
+        [
+            f"shipped {selection['chosen']} as final.zip ({selection['games']} games against each"
+            " scripted fighter and exploiter, sampled and argmax)",
+            common.table(("candidate", "worst win %", "mean win %"), rows),
         ]
     )
 

@@ -24,9 +24,10 @@ import time
 from pathlib import Path
 from typing import Any
 
-from agents.common import _non_negative, _positive
+from agents.common import _non_negative, _positive, one_core
 from agents.exploit import _even, _positive_float, exploit
 from agents.league import load_league_config, train_league
+from agents.league_select import SELECTION_FILE
 from agents.style_report import style_rows
 from vooga_env.game.config import load_config
 from vooga_env.policies import SCRIPTED
@@ -135,7 +136,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--config", default="default", help="a name in configs/league or a path")
     parser.add_argument("--model", type=Path, help="measure this model; no training")
     parser.add_argument("--seed", type=_non_negative, help="the league's seed (default: config's)")
-    parser.add_argument("--minutes", type=_positive_float, default=15.0)
+    parser.add_argument(
+        "--minutes", type=_positive_float, help="the league's time budget (default: the config's)"
+    )
     parser.add_argument("--games", type=_positive, default=200)
     parser.add_argument("--elo-games", type=_positive, default=20)
     parser.add_argument("--style-games", type=_positive, default=20)
@@ -158,6 +161,7 @@ def main(argv: list[str] | None = None) -> int:
         args.elo_games, args.style_games, args.exploit_minutes = 1, 1, 0.02
         args.exploit_evals, args.exploit_games, args.exploit_seeds = 1, 4, [3]
     config = load_league_config(args.config, seed=args.seed)
+    one_core()  # as agents.league and agents.exploit run: one core each, two runs at a time
     args.out = args.out or Path("runs/recipe") / f"league_{args.config}"
     result: dict[str, Any] = {"config": config.name}
     model = args.model
@@ -167,6 +171,8 @@ def main(argv: list[str] | None = None) -> int:
                              overwrite=True)  # fmt: skip
         result["train_minutes"] = (time.monotonic() - start) / 60.0
         result["steps"] = json.loads((args.out / "train_state.json").read_text())["num_timesteps"]
+        if (args.out / SELECTION_FILE).is_file():
+            result["selection"] = json.loads((args.out / SELECTION_FILE).read_text())
     args.out.mkdir(parents=True, exist_ok=True)
     result.update(measure(model, args))
     atomic_write_text(args.out / "result.json", json.dumps(result, indent=2))
