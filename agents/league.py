@@ -12,7 +12,9 @@ i's opponent is `PoolOpponent.assigned[i]`, drawn again from the pool at the end
 (`agents.league_pool`: harder opponents more often). Every `save_steps` a snapshot of the
 learner joins the pool (the last `window` stay); every `exploiter_every` steps (0: never) a
 fresh learner trains `exploiter_steps` steps against the frozen learner alone
-(`agents.exploit.make_learner`) and joins the pool (the last `exploiters` stay). With
+(`agents.league_exploiter`) and joins the pool (the last `exploiters` stay); with
+`exploiter_parallel` it trains in a second process while the learner goes on, starts from the
+last exploiter, and joins at the next mark. With
 `join_win_rate` the scripted fighters join one at a time, weak to strong. Checkpoints,
 `--resume`, Ctrl-C and `OUT/final.zip` work as in agents.train; the learner's Elo, the pool's
 size and the PFSP win rates are logged (TensorBoard when installed).
@@ -52,13 +54,14 @@ from .checkpoints import (
     resume_state,
     start_fresh,
 )
-from .exploit import make_learner
+from .league_exploiter import ExploiterJob, ExploiterWorker, train_exploiter
 from .league_pool import WEIGHTINGS, Pool, PoolOpponent
 from .league_select import SELECTION_FILE, league_opponents, ship_best
 from .train import learn_and_save, load_init, start_from
 from .train_config import PPOConfig
 
 EXPLOITER_PLAYS = ("sampled", "argmax", "alternate")
+POOL_PLAYS = ("sampled", "argmax")
 
 
 @dataclass(frozen=True)
@@ -77,6 +80,12 @@ class LeagueConfig:
     # How the frozen learner plays while an exploiter trains against it: "argmax", "sampled" (as
     # it plays in training), or "alternate" (argmax first, then turn about).
     exploiter_play: str = "argmax"
+    # Train each exploiter in a second process (the other core) while the learner trains on,
+    # starting from the last exploiter; it joins the pool at the next mark.
+    exploiter_parallel: bool = False
+    # How exploiters play once in the pool: "sampled" (as snapshots do) or "argmax" (as a
+    # measuring exploiter is judged).
+    exploiter_pool_play: str = "sampled"
     # 0: every scripted fighter is in the pool from the start. Above 0: they join one at a time,
     # in the order of `scripted`, the next once the learner's mean score over the scripted
     # members present (a full `results_window` of games each) reaches this.
@@ -102,10 +111,20 @@ class LeagueConfig:
             )
         if self.exploiter_every < 0:
             raise ConfigError(f"exploiter_every = {self.exploiter_every} is not allowed: >= 0")
+        if self.exploiter_parallel and not self.exploiter_every:
+            raise ConfigError(
+                "exploiter_parallel = true is not allowed with exploiter_every = 0: set "
+                "exploiter_every > 0, or exploiter_parallel = false"
+            )
         if self.exploiter_play not in EXPLOITER_PLAYS:
             raise ConfigError(
                 f"exploiter_play = {self.exploiter_play!r} is not allowed: one of "
                 f"{list(EXPLOITER_PLAYS)}"
+            )
+        if self.exploiter_pool_play not in POOL_PLAYS:
+            raise ConfigError(
+                f"exploiter_pool_play = {self.exploiter_pool_play!r} is not allowed: one of "
+                f"{list(POOL_PLAYS)}"
             )
         if not 0.0 <= self.join_win_rate <= 1.0:
             raise ConfigError(f"join_win_rate = {self.join_win_rate} is not allowed: in [0, 1]")
@@ -170,6 +189,13 @@ class LeagueCallback(BaseCallback):
         self.last_exploiter = state.get("last_exploiter", 0)
         self.exploiters_made = state.get("exploiters_made", 0)
         self.opponent: PoolOpponent | None = None
+        self.worker = ExploiterWorker() if self.league.exploiter_parallel else None
+        # the parallel exploiter training now, as `_job`'s arguments (resubmitted on resume)
+        self.pending: dict[str, Any] | None = state.get("pending_exploiter")
+        if self.worker is not None:
+            self.worker.waited = state.get("exploiter_wait_s", 0.0)
+            if self.pending:
+                self.worker.submit(self._job(**self.pending))
 
     def attach(self, opponent: PoolOpponent) -> None:
         self.opponent = opponent
@@ -209,11 +235,15 @@ class LeagueCallback(BaseCallback):
         self.logger.record("league/learner_elo", self.pool.ratings["learner"])
         self.logger.record("league/pool_size", len(self.pool.members))
         self.logger.record("league/scripted_joined", self.joined)
+        if self.worker is not None:
+            self.logger.record("league/exploiter_wait_s", self.worker.waited)
         return True
 
     def _join(self, kind: str, name: str, results: list[float] | None = None) -> None:
-        """Load a saved snapshot or exploiter into the pool (sampling its actions)."""
-        policy = FrozenPolicy(load_model(self.folder / kind / f"{name}.zip"), name, False)
+        """Load a saved snapshot (sampling its actions) or exploiter (`exploiter_pool_play`)
+        into the pool."""
+        argmax = kind == "exploiters" and self.league.exploiter_pool_play == "argmax"
+        policy = FrozenPolicy(load_model(self.folder / kind / f"{name}.zip"), name, argmax)
         policy.reset(int(self.rng.integers(2**31)))
         self.pool.add(name, BatchPolicy(policy), results)
         kept = getattr(self, kind)
@@ -238,32 +268,56 @@ class LeagueCallback(BaseCallback):
         self._join("snapshots", name)
         self.last_save = steps
 
-    def exploiter_target(self) -> FrozenPolicy:
-        """The frozen learner the next exploiter trains against, playing as `exploiter_play`
-        says ("alternate": argmax for the first exploiter, sampled for the second, ...)."""
+    def exploiter_argmax(self) -> bool:
+        """Whether the next exploiter trains against the learner's argmax play, as
+        `exploiter_play` says ("alternate": argmax for the first exploiter, sampled next, ...)."""
         play = self.league.exploiter_play
         if play == "alternate":
             play = ("argmax", "sampled")[self.exploiters_made % 2]
-        learner = FrozenPolicy(self.model, "learner", deterministic=play == "argmax")
-        learner.reset(int(self.rng.integers(2**31)))
-        return learner
+        return play == "argmax"
 
     def _exploiter(self) -> None:
-        """Train a fresh learner against the frozen learner, then pool it."""
-        target = BatchPolicy(self.exploiter_target())
-        fights = max(self.config.fights // 2, 1)
-        envs = FightVecEnv(
-            fights, load_config(self.config.fight), opponent=target, seat="alternate"
-        )
-        seed = int(self.rng.integers(2**31))
-        exploiter = make_learner(envs, seed)
-        exploiter.learn(self.league.exploiter_steps)
-        name = f"exploiter_{self.num_timesteps}"
+        """Pool an exploiter trained against the learner as it is now; in parallel, pool the one
+        trained since the last mark and start the next from it."""
+        if self.worker is not None and self.pending is not None:
+            self.worker.collect()
+            self._join("exploiters", f"exploiter_{self.pending['steps']}")
+        steps = self.num_timesteps
         (self.folder / "exploiters").mkdir(parents=True, exist_ok=True)
-        atomic_write(self.folder / "exploiters" / f"{name}.zip", exploiter.save)
-        self._join("exploiters", name)
-        self.last_exploiter = self.num_timesteps
+        atomic_write(self.folder / "exploiters" / f"target_{steps}.zip", self.model.save)
+        last = f"{self.exploiters[-1]}.zip" if self.worker is not None and self.exploiters else ""
+        target_seed, seed = (int(self.rng.integers(2**31)) for _ in range(2))
+        args = {"steps": steps, "argmax": self.exploiter_argmax(), "init": last}
+        job = self._job(**args, target_seed=target_seed, seed=seed)
+        if self.worker is None:
+            self._join("exploiters", Path(train_exploiter(job)).stem)
+        else:
+            self.worker.submit(job)
+            self.pending = {**args, "target_seed": target_seed, "seed": seed}
+        self.last_exploiter = steps
         self.exploiters_made += 1
+
+    def _job(
+        self, steps: int, argmax: bool, target_seed: int, seed: int, init: str
+    ) -> ExploiterJob:
+        """The exploiter job made at `steps` (its files in OUT/exploiters, named by `steps`)."""
+        folder = self.folder / "exploiters"
+        return ExploiterJob(
+            target=str(folder / f"target_{steps}.zip"),
+            argmax=argmax,
+            target_seed=target_seed,
+            seed=seed,
+            steps=self.league.exploiter_steps,
+            fight=self.config.fight,
+            fights=max(self.config.fights // 2, 1),
+            out=str(folder / f"exploiter_{steps}.zip"),
+            init=str(folder / init) if init else "",
+        )
+
+    def close(self) -> None:
+        """Stop the exploiters' process, if there is one."""
+        if self.worker is not None:
+            self.worker.close()
 
     def state(self) -> dict[str, Any]:
         return {
@@ -274,6 +328,8 @@ class LeagueCallback(BaseCallback):
             "last_save": self.last_save,
             "last_exploiter": self.last_exploiter,
             "exploiters_made": self.exploiters_made,
+            "pending_exploiter": self.pending,
+            "exploiter_wait_s": self.worker.waited if self.worker is not None else 0.0,
         }
 
 
@@ -368,7 +424,10 @@ def _run(
     with common.one_core():
         model, league = build(config, folder, state, bool(state), saved)
         every = max(config.checkpoint_every // config.fights, 1)
-        learn_and_save(model, folder, league, every, config, not state, progress, minutes)
+        try:
+            learn_and_save(model, folder, league, every, config, not state, progress, minutes)
+        finally:
+            league.close()
         return select(config, folder, league.snapshots, league.exploiters)
 
 

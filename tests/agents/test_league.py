@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -11,8 +12,9 @@ import torch
 pytest.importorskip("stable_baselines3")
 
 from agents.league import LeagueCallback, load_league_config, main, train_league  # noqa: E402
+from agents.league_exploiter import ExploiterJob, ExploiterWorker, train_exploiter  # noqa: E402
 from agents.league_pool import Pool, PoolOpponent  # noqa: E402
-from vooga_env.game.config import ConfigError  # noqa: E402
+from vooga_env.game.config import CONFIG_DIR, ConfigError  # noqa: E402
 from vooga_env.policies.batched import VectorOpponent, scripted_actions  # noqa: E402
 from vooga_env.policies.models import load_model  # noqa: E402
 
@@ -122,6 +124,48 @@ def test_the_same_seed_trains_the_same_league_and_init_starts_from_a_model(tmp_p
         train_league(load_league_config("smoke", init="nowhere.zip"), tmp_path / "d")
 
 
+def parallel_config(tmp_path, total: int):
+    """The smoke league with an exploiter every 1024 steps, trained in a second process."""
+    path = tmp_path / f"parallel_{total}.toml"
+    text = (CONFIG_DIR / "league" / "smoke.toml").read_text()
+    text = text.replace("exploiter_every = 2048", "exploiter_every = 1024")
+    text = text.replace("exploiters = 1", "exploiters = 2")
+    path.write_text(text + "exploiter_parallel = true\n")
+    return load_league_config(path, total_timesteps=total)
+
+
+def test_parallel_exploiters_continue_from_the_last_and_a_resume_trains_them_again(tmp_path):
+    train_league(parallel_config(tmp_path, 2048), tmp_path, progress=False)
+    stopped = json.loads((tmp_path / "train_state.json").read_text())
+    assert stopped["exploiters"] == ["exploiter_1024"]  # a mark late: 2048's is still training
+    pending = stopped["pending_exploiter"]
+    assert pending["steps"] == 2048 and pending["init"] == "exploiter_1024.zip"
+    config = parallel_config(tmp_path, 3072)
+    train_league(config, tmp_path, resume=True, progress=False)
+    state = json.loads((tmp_path / "train_state.json").read_text())
+    assert state["exploiters"] == ["exploiter_1024", "exploiter_2048"]
+    league = LeagueCallback(config, tmp_path, state)
+    job = replace(league._job(**pending), out=str(tmp_path / "again.zip"))
+    trained = [load_model(path) for path in (job.init, train_exploiter(job))]
+    resumed = load_model(tmp_path / "exploiters" / "exploiter_2048.zip")
+    for a, b, c in zip(*(m.policy.parameters() for m in (*trained, resumed)), strict=True):
+        assert not torch.equal(a, b)  # it trained on from exploiter_1024
+        assert torch.equal(b, c)  # the second process trained what the job says, after a resume
+    for play, argmax in (("sampled", False), ("argmax", True)):
+        league = replace(config.league, exploiter_pool_play=play)
+        members = LeagueCallback(replace(config, league=league), tmp_path, state).pool.members
+        assert [members[name].policy.deterministic for name in state["exploiters"]] == [argmax] * 2
+        assert not members["snapshot_3072"].policy.deterministic  # snapshots always sample
+
+
+def test_a_failed_exploiter_process_is_an_error_that_names_it(tmp_path):
+    worker = ExploiterWorker()
+    missing = str(tmp_path / "no_target.zip")
+    worker.submit(ExploiterJob(missing, True, 0, 0, 64, "small", 2, str(tmp_path / "e.zip")))
+    with pytest.raises(RuntimeError, match="the exploiter process training .*e.zip exited"):
+        worker.collect()
+
+
 @pytest.mark.parametrize(
     ("play", "deterministic"),
     [
@@ -133,13 +177,10 @@ def test_the_same_seed_trains_the_same_league_and_init_starts_from_a_model(tmp_p
 def test_exploiters_train_against_the_learner_playing_as_asked(tmp_path, play, deterministic):
     config = load_league_config("smoke", league={"exploiter_play": play})
     league = LeagueCallback(config, tmp_path, {})
-    league.model = load_model(
-        train_league(load_league_config("smoke", total_timesteps=256), tmp_path / "run")
-    )
     targets = []
     for made in range(3):
         league.exploiters_made = made
-        targets.append(league.exploiter_target().deterministic)
+        targets.append(league.exploiter_argmax())
     assert targets == deterministic
     assert LeagueCallback(config, tmp_path, {"exploiters_made": 5}).exploiters_made == 5
 
@@ -151,6 +192,10 @@ def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
         load_league_config("smoke", league={"scripted": ["ninja"]})
     with pytest.raises(ConfigError, match="exploiter_play = 'best' is not allowed: one of"):
         load_league_config("smoke", league={"exploiter_play": "best"})
+    with pytest.raises(ConfigError, match="exploiter_parallel = true is not allowed with"):
+        load_league_config("smoke", league={"exploiter_parallel": True})
+    with pytest.raises(ConfigError, match="exploiter_pool_play = 'best' is not allowed: one of"):
+        load_league_config("smoke", league={"exploiter_pool_play": "best"})
     with pytest.raises(SystemExit) as stop:
         main(["--config", "smoke", "--out", str(tmp_path), "--resume"])
     assert stop.value.code == 2 and "no checkpoint" in capsys.readouterr().err

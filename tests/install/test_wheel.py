@@ -105,7 +105,15 @@ def test_the_console_commands_run_and_write_only_where_asked(installed):
     out = run("vooga-evaluate", "run/final.zip", "--episodes", "2", "--opponents", "rush",
               "--no-progress", cwd=folder, env=env)  # fmt: skip
     assert "rush" in out
-    assert sorted(p.name for p in folder.iterdir()) == ["elo.json", "run"]
+    # the league's exploiter in a second process, spawned from the console script
+    config = work / "parallel.toml"
+    smoke = (ROOT / "configs" / "league" / "smoke.toml").read_text()
+    config.write_text(smoke.replace("exploiter_every = 2048", "exploiter_every = 1024")
+                      + "exploiter_parallel = true\n")  # fmt: skip
+    run("vooga-league", "--config", config, "--steps", "2048", "--out", "league", "--no-progress",
+        cwd=folder, env=env, timeout=600)  # fmt: skip
+    assert (folder / "league" / "exploiters" / "exploiter_1024.zip").is_file()
+    assert sorted(p.name for p in folder.iterdir()) == ["elo.json", "league", "run"]
 
 
 def test_the_readme_python_snippets_run_from_the_wheel(installed):
