@@ -23,7 +23,8 @@ os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
 def one_core() -> Any:
     """Torch and numpy's BLAS on one thread each, from now on (or, used as a context, until its
     end): a run has one core of this 2-core machine, and threads only wait on each other once
-    the other core is busy (numpy's BLAS was 4x slower on a 680-row batch of a policy)."""
+    the other core is busy (numpy's BLAS on two threads was 27x slower on a 680-row batch of
+    a policy, docs/league.md)."""
     import torch
     from threadpoolctl import threadpool_limits
 

@@ -56,12 +56,11 @@ from .checkpoints import (
 )
 from .league_exploiter import ExploiterJob, ExploiterWorker, train_exploiter
 from .league_pool import WEIGHTINGS, Pool, PoolOpponent
-from .league_select import SELECTION_FILE, league_opponents, ship_best
+from .league_select import PLAYS, SELECTION_FILE, league_opponents, ship_best
 from .train import learn_and_save, load_init, start_from
 from .train_config import PPOConfig
 
 EXPLOITER_PLAYS = ("sampled", "argmax", "alternate")
-POOL_PLAYS = ("sampled", "argmax")
 
 
 @dataclass(frozen=True)
@@ -121,10 +120,10 @@ class LeagueConfig:
                 f"exploiter_play = {self.exploiter_play!r} is not allowed: one of "
                 f"{list(EXPLOITER_PLAYS)}"
             )
-        if self.exploiter_pool_play not in POOL_PLAYS:
+        if self.exploiter_pool_play not in PLAYS:
             raise ConfigError(
                 f"exploiter_pool_play = {self.exploiter_pool_play!r} is not allowed: one of "
-                f"{list(POOL_PLAYS)}"
+                f"{list(PLAYS)}"
             )
         if not 0.0 <= self.join_win_rate <= 1.0:
             raise ConfigError(f"join_win_rate = {self.join_win_rate} is not allowed: in [0, 1]")
@@ -242,7 +241,7 @@ class LeagueCallback(BaseCallback):
     def _join(self, kind: str, name: str, results: list[float] | None = None) -> None:
         """Load a saved snapshot (sampling its actions) or exploiter (`exploiter_pool_play`)
         into the pool."""
-        argmax = kind == "exploiters" and self.league.exploiter_pool_play == "argmax"
+        argmax = kind == "exploiters" and PLAYS[self.league.exploiter_pool_play]
         policy = FrozenPolicy(load_model(self.folder / kind / f"{name}.zip"), name, argmax)
         policy.reset(int(self.rng.integers(2**31)))
         self.pool.add(name, BatchPolicy(policy), results)

@@ -25,7 +25,7 @@ from vooga_env.tools.files import atomic_write, atomic_write_text
 
 from .league_pool import Pool, PoolOpponent
 
-PLAYS = {"sampled": False, "argmax": True}
+PLAYS = {"sampled": False, "argmax": True}  # a way of playing: whether it takes the argmax
 SELECTION_FILE = "selection.json"
 
 

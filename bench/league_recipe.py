@@ -27,7 +27,7 @@ from typing import Any
 from agents.common import _non_negative, _positive, one_core
 from agents.exploit import _even, _positive_float, exploit
 from agents.league import load_league_config, train_league
-from agents.league_select import SELECTION_FILE
+from agents.league_select import PLAYS, SELECTION_FILE
 from agents.style_report import style_rows
 from vooga_env.game.config import load_config
 from vooga_env.policies import SCRIPTED
@@ -35,8 +35,6 @@ from vooga_env.policies.models import BatchPolicy, FrozenPolicy, load_model
 from vooga_env.tools.batch_match import batch_match
 from vooga_env.tools.elo import round_robin
 from vooga_env.tools.files import atomic_write_text
-
-PLAYS = {"sampled": False, "argmax": True}
 
 
 def win_rates(network: Any, games: int, seed: int) -> dict[str, dict[str, Any]]:
