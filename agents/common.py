@@ -6,7 +6,9 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import signal
 import sys
+import threading
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
@@ -30,6 +32,22 @@ def one_core() -> Any:
 
     torch.set_num_threads(1)
     return threadpool_limits(limits=1, user_api="blas")
+
+
+def start_without_ctrl_c(processes: list[Any]) -> None:
+    """Start `processes` with SIGINT ignored (an ignored signal stays ignored in the new
+    interpreter): Ctrl-C is the caller's, which stops them its own way. Only the main thread
+    may set a handler; elsewhere Ctrl-C does not reach the caller anyway."""
+    if threading.current_thread() is not threading.main_thread():
+        for process in processes:
+            process.start()
+        return
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        for process in processes:
+            process.start()
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 class WindowClosed(Exception):

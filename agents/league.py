@@ -1,23 +1,25 @@
-"""Train a fighter in a league: one PPO learner against a pool of its own past snapshots, the
-scripted fighters and short-lived exploiters, each game's opponent drawn by PFSP.
+"""Train a fighter in a league: PPO against its snapshots, scripted fighters and exploiters.
+
+Each game's opponent is drawn from the pool by PFSP (harder opponents more often).
 
     python -m agents.league [--config default] [--out runs/NAME] [--seed N] [--minutes M]
     python -m agents.league --config smoke --out /tmp/league  # seconds
     python -m agents.league --init runs/default/final.zip     # start from a trained model
 
-Config-driven (`configs/league/*.toml`; `[ppo]` as in agents.train, `[league]` below). The
-learner sits in seat i % 2 of fight i of `fights` batched fights (`FightVecEnv`,
-`seat="alternate"`: both seats in every rollout, whatever the engine does in seat order); fight
-i's opponent is `PoolOpponent.assigned[i]`, drawn again from the pool at the end of each game
-(`agents.league_pool`: harder opponents more often). Every `save_steps` a snapshot of the
-learner joins the pool (the last `window` stay); every `exploiter_every` steps (0: never) a
-fresh learner trains `exploiter_steps` steps against the frozen learner alone
-(`agents.league_exploiter`) and joins the pool (the last `exploiters` stay); with
-`exploiter_parallel` it trains in a second process while the learner goes on, starts from the
-last exploiter, and joins at the next mark. With
-`join_win_rate` the scripted fighters join one at a time, weak to strong. Checkpoints,
-`--resume`, Ctrl-C and `OUT/final.zip` work as in agents.train; the learner's Elo, the pool's
-size and the PFSP win rates are logged (TensorBoard when installed).
+Config-driven (`configs/league/*.toml`; `[ppo]` as in agents.train, `[league]` below). The learner
+sits in seat i % 2 of fight i of `fights` batched fights (`FightVecEnv`, `seat="alternate"`: both
+seats in every rollout, whatever the engine does in seat order); fight i's opponent is
+`PoolOpponent.assigned[i]`, drawn again from the pool at the end of each game
+(`agents.league_pool`: harder opponents more often). Every `save_steps` a snapshot of the learner
+joins the pool (the last `window` stay); every `exploiter_every` steps (0: never) a fresh learner
+trains `exploiter_steps` steps against the frozen learner alone (`agents.league_exploiter`) and
+joins the pool (the last `exploiters` stay); with `exploiter_parallel` it trains in a second
+process while the learner goes on, starts from the last exploiter, and joins at the next mark. With
+`join_win_rate` the scripted fighters join one at a time, weak to strong. With `leagues` > 1, that
+many leagues train side by side, one process each, and the best final model is shipped
+(agents.league_population). Checkpoints, `--resume`, Ctrl-C and `OUT/final.zip` work as in
+agents.train; the learner's Elo, the pool's size and the PFSP win rates are logged (TensorBoard
+when installed).
 """
 
 from __future__ import annotations
@@ -26,7 +28,7 @@ import argparse
 import importlib.util
 import json
 import sys
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -40,7 +42,7 @@ from vooga_env.envs.sb3 import FightVecEnv
 from vooga_env.game.config import CONFIG_DIR, ConfigError, build_config, load_config, read_toml
 from vooga_env.policies import SCRIPTED
 from vooga_env.policies.batched import VectorOpponent
-from vooga_env.policies.models import BatchPolicy, FrozenPolicy, load_model
+from vooga_env.policies.models import frozen_batch, load_model
 from vooga_env.tools.files import atomic_write
 
 from . import common
@@ -56,6 +58,7 @@ from .checkpoints import (
 )
 from .league_exploiter import ExploiterJob, ExploiterWorker, train_exploiter
 from .league_pool import WEIGHTINGS, Pool, PoolOpponent
+from .league_population import LeagueFailed, league_folder, run_leagues, ship_best_league
 from .league_select import PLAYS, SELECTION_FILE, league_opponents, ship_best
 from .train import learn_and_save, load_init, start_from
 from .train_config import PPOConfig
@@ -145,11 +148,19 @@ class LeagueRunConfig:
     league: LeagueConfig = LeagueConfig()
     name: str = "league"
     init: str = ""  # a saved model (.zip) to start from; "": a new network
+    # Above 1: this many leagues, one process each (seed, seed + 1, ...), the best final model
+    # over `select_games` games shipped (agents.league_population).
+    leagues: int = 1
 
     def __post_init__(self) -> None:
-        for key in ("total_timesteps", "fights", "checkpoint_every"):
+        for key in ("total_timesteps", "fights", "checkpoint_every", "leagues"):
             if getattr(self, key) <= 0:
                 raise ConfigError(f"{key} = {getattr(self, key)} is not allowed: must be > 0")
+        if self.leagues > 1 and not self.league.select_games:
+            raise ConfigError(
+                f"leagues = {self.leagues} is not allowed with [league] select_games = 0: the "
+                "leagues' final models are compared over select_games games (set it > 0, e.g. 40)"
+            )
 
 
 LEAGUE_DIR = CONFIG_DIR / "league"
@@ -242,9 +253,9 @@ class LeagueCallback(BaseCallback):
         """Load a saved snapshot (sampling its actions) or exploiter (`exploiter_pool_play`)
         into the pool."""
         argmax = kind == "exploiters" and PLAYS[self.league.exploiter_pool_play]
-        policy = FrozenPolicy(load_model(self.folder / kind / f"{name}.zip"), name, argmax)
-        policy.reset(int(self.rng.integers(2**31)))
-        self.pool.add(name, BatchPolicy(policy), results)
+        model = load_model(self.folder / kind / f"{name}.zip")
+        player = frozen_batch(model, name, argmax, int(self.rng.integers(2**31)))
+        self.pool.add(name, player, results)
         kept = getattr(self, kind)
         kept.append(name)
         limit = self.league.window if kind == "snapshots" else self.league.exploiters
@@ -394,9 +405,49 @@ def train_league(
     if resume and not folder.is_dir():
         raise FileNotFoundError(f"--resume: no run folder at {folder}")
     saved = None if resume else load_init(config)
+    if config.leagues > 1:
+        return _train_leagues(config, folder, resume, progress, minutes, overwrite)
     with RunLock(folder):
         state = _prepare(folder, resume, overwrite, config)
         return _run(config, folder, state, saved, progress, minutes or config.minutes)
+
+
+def _train_leagues(
+    config: LeagueRunConfig,
+    folder: Path,
+    resume: bool,
+    progress: bool,
+    minutes: float | None,
+    overwrite: bool,
+) -> Path:
+    """`config.leagues` leagues side by side in OUT/league_i, then the best final model
+    shipped as OUT/final.zip (agents.league_population)."""
+    folders = [league_folder(folder, index) for index in range(config.leagues)]
+    with RunLock(folder):
+        for league in folders:  # every league's folder checked before any process starts
+            if resume and not holds_run(league):
+                raise FileNotFoundError(f"--resume: no checkpoint in {league}")
+            if not resume:
+                start_fresh(league, overwrite, config, "league_config.json")
+        for stale in (folder / "final.zip", folder / SELECTION_FILE):
+            stale.unlink(missing_ok=True)
+        runs = [
+            (replace(config, seed=config.seed + index, leagues=1), league, resume, False, minutes,
+             overwrite)
+            for index, league in enumerate(folders)
+        ]  # fmt: skip
+        run_leagues(train_league, runs, config.total_timesteps * config.leagues, progress)
+        pool = config.league
+        with common.one_core():
+            return ship_best_league(
+                folder,
+                config.leagues,
+                list(pool.scripted),
+                PLAYS[pool.exploiter_pool_play],
+                pool.select_games,
+                config.seed,
+                load_config(config.fight),
+            )
 
 
 def _prepare(
@@ -439,10 +490,12 @@ def select(
     games = config.league.select_games
     if not games or not (config.league.scripted or exploiters):
         return final
-    opponents = league_opponents(folder, list(config.league.scripted), exploiters)
-    candidates = [folder / "snapshots" / f"{name}.zip" for name in snapshots]
+    argmax = PLAYS[config.league.exploiter_pool_play]
+    opponents = league_opponents(folder, list(config.league.scripted), exploiters, argmax)
+    candidates = {f"{name}.zip": folder / "snapshots" / f"{name}.zip" for name in snapshots}
+    candidates["final.zip"] = final
     fight = load_config(config.fight)
-    return ship_best(folder, [*candidates, final], opponents, games, config.seed, fight)
+    return ship_best(folder, candidates, opponents, games, config.seed, fight)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -469,18 +522,21 @@ def main(argv: list[str] | None = None) -> int:
             config, folder, args.resume, not args.no_progress, args.minutes, args.overwrite
         )
     except KeyboardInterrupt:
+        latest = folder / ("league_*" if config.leagues > 1 else "") / "latest.zip"
         print(
-            f"\ninterrupted: the last checkpoint is {folder / 'latest.zip'}; "
+            f"\ninterrupted: the last checkpoint is {latest}; "
             f"continue with --resume --out {folder}",
             file=sys.stderr,
         )
         return 130
-    except Diverged as error:
+    except (Diverged, LeagueFailed) as error:
         print(f"stopped: {error}", file=sys.stderr)
         return 1
     except (FileNotFoundError, FileExistsError, ConfigError, BrokenRun, RunLocked) as error:
         parser.error(str(error))
-    print(format_pool(json.loads((folder / STATE_FILE).read_text())))
+    runs = [league_folder(folder, index) for index in range(config.leagues)]
+    for run in runs if config.leagues > 1 else [folder]:
+        print(f"{run}: {format_pool(json.loads((run / STATE_FILE).read_text()))}")
     if (folder / SELECTION_FILE).is_file():
         print(format_selection(json.loads((folder / SELECTION_FILE).read_text())))
     print(f"trained: {final}")

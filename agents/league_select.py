@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from vooga_env.policies.batched import VectorOpponent
-from vooga_env.policies.models import BatchPolicy, FrozenPolicy, load_model
+from vooga_env.policies.models import frozen_batch, load_model
 from vooga_env.tools.batch_match import batch_outcomes
 from vooga_env.tools.files import atomic_write, atomic_write_text
 
@@ -44,20 +44,23 @@ def scores(
             pool.add(name, opponents[name](seed + 100 + offset))
         mixed = PoolOpponent(pool, fights)
         mixed.assigned = [names[fight % len(names)] for fight in range(fights)]
-        candidate = FrozenPolicy(network, "candidate", deterministic)
-        candidate.reset(seed)
-        won = np.array(batch_outcomes(BatchPolicy(candidate), mixed, fights, seed, fight)) == "win"
+        candidate = frozen_batch(network, "candidate", deterministic, seed)
+        won = np.array(batch_outcomes(candidate, mixed, fights, seed, fight)) == "win"
         rates[play] = {
             name: float(won[offset :: len(names)].mean()) for offset, name in enumerate(names)
         }
     return rates
 
 
-def league_opponents(folder: Path, scripted: list[str], exploiters: list[str]) -> dict[str, Any]:
-    """The league's scripted fighters and its exploiters (sampling, as in the pool), by name."""
+def league_opponents(
+    folder: Path, scripted: list[str], exploiters: list[str], argmax: bool = False, prefix: str = ""
+) -> dict[str, Any]:
+    """The league's scripted fighters and its exploiters (playing as in the pool: `argmax` or
+    sampling), by name; `prefix` goes before each exploiter's name."""
     opponents: dict[str, Any] = {name: _scripted(name) for name in scripted}
     for name in exploiters:
-        opponents[name] = _frozen(load_model(folder / "exploiters" / f"{name}.zip"), name)
+        network = load_model(folder / "exploiters" / f"{name}.zip")
+        opponents[prefix + name] = _frozen(network, name, argmax)
     return opponents
 
 
@@ -65,38 +68,32 @@ def _scripted(name: str) -> Any:
     return lambda seed: VectorOpponent(name, seed)
 
 
-def _frozen(network: Any, name: str) -> Any:
-    def fresh(seed: int) -> BatchPolicy:
-        policy = FrozenPolicy(network, name, False)
-        policy.reset(seed)
-        return BatchPolicy(policy)
-
-    return fresh
+def _frozen(network: Any, name: str, argmax: bool) -> Any:
+    return lambda seed: frozen_batch(network, name, argmax, seed)
 
 
 def ship_best(
     folder: Path,
-    candidates: list[Path],
+    candidates: dict[str, Path],
     opponents: dict[str, Any],
     games: int,
     seed: int,
     fight: Any = "default",
 ) -> Path:
-    """Score each candidate (oldest first), copy the best to `folder/final.zip`, and write every
-    score to `folder/selection.json`; returns final.zip's path."""
+    """Score each candidate (by name, oldest first), copy the best to `folder/final.zip`, and
+    write every score to `folder/selection.json`; returns final.zip's path."""
     table = {}
-    for path in candidates:
+    for name, path in candidates.items():
         rates = scores(load_model(path), opponents, games, seed, fight)
         every = [rate for play in rates.values() for rate in play.values()]
-        table[path.name] = {"worst": min(every), "mean": float(np.mean(every)), "win_rates": rates}
-    rows = list(table.values())
-    best = max(
-        range(len(rows)), key=lambda index: (rows[index]["worst"], rows[index]["mean"], index)
+        table[name] = {"worst": min(every), "mean": float(np.mean(every)), "win_rates": rates}
+    names = list(table)
+    chosen = max(
+        names, key=lambda name: (table[name]["worst"], table[name]["mean"], names.index(name))
     )
-    chosen = candidates[best]
     final = folder / "final.zip"
-    if chosen != final:
-        atomic_write(final, lambda temporary: shutil.copyfile(chosen, temporary))
-    report = {"chosen": chosen.name, "games": games, "candidates": table}
+    if candidates[chosen] != final:
+        atomic_write(final, lambda temporary: shutil.copyfile(candidates[chosen], temporary))
+    report = {"chosen": chosen, "games": games, "candidates": table}
     atomic_write_text(folder / SELECTION_FILE, json.dumps(report, indent=2))
     return final

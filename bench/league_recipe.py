@@ -27,6 +27,7 @@ from typing import Any
 from agents.common import _non_negative, _positive, one_core
 from agents.exploit import _even, _positive_float, exploit
 from agents.league import load_league_config, train_league
+from agents.league_population import league_folder
 from agents.league_select import PLAYS, SELECTION_FILE
 from agents.style_report import style_rows
 from vooga_env.game.config import load_config
@@ -96,7 +97,14 @@ def exploit_curve(
 
 
 def report(result: dict[str, Any]) -> str:
-    lines = [f"{result['model']}: win % against each scripted fighter (95% CI)"]
+    lines = []
+    if "steps" in result:
+        lines.append(f"trained {result['steps']} steps in {result['train_minutes']:.1f} minutes")
+    if "selection" in result:
+        chosen = result["selection"]["chosen"]
+        worst = result["selection"]["candidates"][chosen]["worst"]
+        lines.append(f"shipped {chosen}: worst win {100 * worst:.0f}% over the selection's games")
+    lines.append(f"{result['model']}: win % against each scripted fighter (95% CI)")
     for play, rates in result["win_rates"].items():
         cells = [
             f"{name} {100 * r['win_rate']:.0f} ({100 * r['ci95'][0]:.0f}-{100 * r['ci95'][1]:.0f})"
@@ -123,6 +131,10 @@ def report(result: dict[str, Any]) -> str:
                 f"sampled/argmax): {marks}"
             )
     return "\n".join(lines)
+
+
+def _steps(run: Path) -> int:
+    return json.loads((run / "train_state.json").read_text())["num_timesteps"]
 
 
 def _best(row: dict[str, Any]) -> float:
@@ -168,9 +180,10 @@ def main(argv: list[str] | None = None) -> int:
         model = train_league(config, args.out, progress=not args.quick, minutes=args.minutes,
                              overwrite=True)  # fmt: skip
         result["train_minutes"] = (time.monotonic() - start) / 60.0
-        result["steps"] = json.loads((args.out / "train_state.json").read_text())["num_timesteps"]
         if (args.out / SELECTION_FILE).is_file():
             result["selection"] = json.loads((args.out / SELECTION_FILE).read_text())
+        runs = [league_folder(args.out, index) for index in range(config.leagues)]
+        result["steps"] = [_steps(run) for run in runs] if config.leagues > 1 else _steps(args.out)
     args.out.mkdir(parents=True, exist_ok=True)
     result.update(measure(model, args))
     atomic_write_text(args.out / "result.json", json.dumps(result, indent=2))

@@ -46,7 +46,7 @@ def test_the_best_worst_win_rate_is_shipped_even_when_older(tmp_path):
     final = tmp_path / "final.zip"
     final.write_bytes(stander.read_bytes())
     opponents = league_opponents(tmp_path, ["idle"], [])
-    ship_best(tmp_path, [walker, final], opponents, 4, 0)
+    ship_best(tmp_path, {"walker.zip": walker, "final.zip": final}, opponents, 4, 0)
     assert final.read_bytes() == walker.read_bytes()
     selection = json.loads((tmp_path / SELECTION_FILE).read_text())
     assert selection["chosen"] == "walker.zip"
@@ -78,6 +78,10 @@ def test_a_league_with_select_games_ships_its_best_candidate_repeatably(tmp_path
     opponents = league_opponents(run, ["rush", "punisher"], state["exploiters"])
     again = scores(load_model(final), opponents, 4, config.seed, load_config(config.fight))
     assert again == selection["candidates"][selection["chosen"]]["win_rates"]  # the same games
+    for argmax in (False, True):  # exploiters play as `exploiter_pool_play` has them play
+        players = league_opponents(run, [], state["exploiters"], argmax, "league_0/")
+        assert list(players) == [f"league_0/{name}" for name in state["exploiters"]]
+        assert all(player(0).policy.deterministic == argmax for player in players.values())
 
 
 @pytest.mark.parametrize("games", [-2, 3])

@@ -105,14 +105,17 @@ def test_the_console_commands_run_and_write_only_where_asked(installed):
     out = run("vooga-evaluate", "run/final.zip", "--episodes", "2", "--opponents", "rush",
               "--no-progress", cwd=folder, env=env)  # fmt: skip
     assert "rush" in out
-    # the league's exploiter in a second process, spawned from the console script
+    # two leagues, each with its exploiter in another process: all spawned from the console script
     config = work / "parallel.toml"
     smoke = (ROOT / "configs" / "league" / "smoke.toml").read_text()
-    config.write_text(smoke.replace("exploiter_every = 2048", "exploiter_every = 1024")
-                      + "exploiter_parallel = true\n")  # fmt: skip
+    smoke = smoke.replace("exploiter_every = 2048", "exploiter_every = 1024")
+    config.write_text(smoke.replace("fights = 8", "fights = 8\nleagues = 2")
+                      + "exploiter_parallel = true\nselect_games = 2\n")  # fmt: skip
     run("vooga-league", "--config", config, "--steps", "2048", "--out", "league", "--no-progress",
         cwd=folder, env=env, timeout=600)  # fmt: skip
-    assert (folder / "league" / "exploiters" / "exploiter_1024.zip").is_file()
+    for league in ("league_0", "league_1"):
+        assert (folder / "league" / league / "exploiters" / "exploiter_1024.zip").is_file()
+    assert (folder / "league" / "final.zip").is_file()
     assert sorted(p.name for p in folder.iterdir()) == ["elo.json", "league", "run"]
 
 

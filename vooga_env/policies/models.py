@@ -144,6 +144,13 @@ class FrozenPolicy(MLPPolicy):
         super().__init__(layers, activation, name, deterministic)
 
 
+def frozen_batch(model: Any, name: str, deterministic: bool, seed: int) -> BatchPolicy:
+    """A saved SB3 model as a seeded batch player (`FightVecEnv(opponent=...)`, `batch_match`)."""
+    player = BatchPolicy(FrozenPolicy(model, name, deterministic))
+    player.reset(seed)
+    return player
+
+
 def save_mlp(path: str | Path, layers: Layers, activation: str) -> Path:
     """Write an MLP fighter to a small .npz file (`load_mlp` and `make_policy` read it back)."""
     path = Path(path)

@@ -1,0 +1,87 @@
+"""Leagues side by side (`leagues` > 1): one process and seed each, the best final model shipped;
+Ctrl-C stops them all, and `--resume` continues every one."""
+
+from __future__ import annotations
+
+import json
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("stable_baselines3")
+
+from agents.league import load_league_config, train_league  # noqa: E402
+from agents.league_population import LeagueFailed, run_leagues  # noqa: E402
+from vooga_env.game.config import CONFIG_DIR, ConfigError  # noqa: E402
+from vooga_env.policies.models import load_model  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def two_leagues(tmp_path: Path) -> Path:
+    """The smoke league, twice, with 4 games a pairing to choose the one shipped."""
+    text = (CONFIG_DIR / "league" / "smoke.toml").read_text()
+    path = tmp_path / "two.toml"
+    path.write_text(text.replace("fights = 8", "fights = 8\nleagues = 2") + "select_games = 4\n")
+    return path
+
+
+def test_ctrl_c_stops_every_league_and_the_resumed_leagues_ship_the_best(tmp_path):
+    config, out = two_leagues(tmp_path), tmp_path / "run"
+    command = [sys.executable, "-m", "agents.league", "--config", str(config), "--out", str(out)]
+    process = subprocess.Popen(
+        [*command, "--steps", str(10**7), "--no-progress"],
+        cwd=ROOT,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),  # as at a terminal
+    )
+    leagues = [out / "league_0", out / "league_1"]
+    deadline = time.monotonic() + 180
+    while not all((league / "checkpoints" / "ppo_2048_steps.zip").is_file() for league in leagues):
+        assert process.poll() is None and time.monotonic() < deadline
+        time.sleep(0.2)
+    process.send_signal(signal.SIGINT)
+    _, stderr = process.communicate(timeout=120)
+    assert process.returncode == 130, stderr
+    assert "--resume" in stderr
+    states = [json.loads((league / "train_state.json").read_text()) for league in leagues]
+    assert all(state["num_timesteps"] >= 2048 for state in states)
+    assert not (out / "final.zip").exists()
+    seeds = [json.loads((league / "league_config.json").read_text())["seed"] for league in leagues]
+    assert seeds == [0, 1]  # the config's seed, then the next
+
+    total = max(state["num_timesteps"] for state in states) + 1024
+    final = train_league(load_league_config(config, total_timesteps=total), out, resume=True)
+    for league in leagues:
+        assert load_model(league / "final.zip").num_timesteps >= total  # whole rollouts
+    selection = json.loads((out / "selection.json").read_text())
+    assert list(selection["candidates"]) == ["league_0", "league_1"]
+    assert final.read_bytes() == (out / selection["chosen"] / "final.zip").read_bytes()
+    rows = selection["candidates"].values()
+    assert selection["candidates"][selection["chosen"]]["worst"] == max(r["worst"] for r in rows)
+    opponents = set(selection["candidates"]["league_0"]["win_rates"]["argmax"])
+    exploiters = {
+        f"{league.name}/{name}"
+        for league in leagues
+        for name in json.loads((league / "train_state.json").read_text())["exploiters"]
+    }
+    assert len(exploiters) == 2 and opponents == {"rush", "punisher", *exploiters}
+
+
+def test_a_failed_league_process_is_an_error_that_names_its_folder(tmp_path):
+    config = load_league_config("smoke")
+    missing = tmp_path / "missing"
+    with pytest.raises(LeagueFailed, match=f"league process of {missing} \\(exit code 1\\)"):
+        run_leagues(train_league, [(config, missing, True)], 0, progress=False)
+
+
+def test_leagues_need_games_to_choose_between_them():
+    with pytest.raises(ConfigError, match="leagues = 2 is not allowed with .*select_games = 0"):
+        load_league_config("smoke", leagues=2)
+    with pytest.raises(ConfigError, match="leagues = 0 is not allowed: must be > 0"):
+        load_league_config("smoke", leagues=0)
