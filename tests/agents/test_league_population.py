@@ -4,10 +4,7 @@ Ctrl-C stops them all, and `--resume` continues every one."""
 from __future__ import annotations
 
 import json
-import signal
-import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
@@ -16,6 +13,7 @@ pytest.importorskip("stable_baselines3")
 
 from agents.league import load_league_config, train_league  # noqa: E402
 from agents.league_population import LeagueFailed, run_leagues  # noqa: E402
+from tests.agents.interrupt import interrupt_when  # noqa: E402
 from vooga_env.game.config import CONFIG_DIR, ConfigError  # noqa: E402
 from vooga_env.policies.models import load_model  # noqa: E402
 
@@ -33,22 +31,12 @@ def two_leagues(tmp_path: Path) -> Path:
 def test_ctrl_c_stops_every_league_and_the_resumed_leagues_ship_the_best(tmp_path):
     config, out = two_leagues(tmp_path), tmp_path / "run"
     command = [sys.executable, "-m", "agents.league", "--config", str(config), "--out", str(out)]
-    process = subprocess.Popen(
-        [*command, "--steps", str(10**7), "--no-progress"],
-        cwd=ROOT,
-        stderr=subprocess.PIPE,
-        text=True,
-        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),  # as at a terminal
-    )
     leagues = [out / "league_0", out / "league_1"]
-    deadline = time.monotonic() + 180
-    while not all((league / "checkpoints" / "ppo_2048_steps.zip").is_file() for league in leagues):
-        assert process.poll() is None and time.monotonic() < deadline
-        time.sleep(0.2)
-    process.send_signal(signal.SIGINT)
-    _, stderr = process.communicate(timeout=120)
-    assert process.returncode == 130, stderr
-    assert "--resume" in stderr
+
+    def ready() -> bool:
+        return all((league / "checkpoints" / "ppo_2048_steps.zip").is_file() for league in leagues)
+
+    interrupt_when([*command, "--steps", str(10**7), "--no-progress"], ready, wait=180, stop=120)
     states = [json.loads((league / "train_state.json").read_text()) for league in leagues]
     assert all(state["num_timesteps"] >= 2048 for state in states)
     assert not (out / "final.zip").exists()

@@ -2,16 +2,14 @@
 
 import dataclasses
 import json
-import signal
-import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
 
 from agents.train import main, make_envs, train
 from agents.train_config import load_train_config
+from tests.agents.interrupt import interrupt_when
 from vooga_env.game.config import ConfigError
 from vooga_env.policies import SCRIPTED
 from vooga_env.policies.models import load_model
@@ -167,23 +165,8 @@ def test_ctrl_c_keeps_the_last_checkpoint_and_resume_finishes(tmp_path):
         str(out),
         "--no-progress",
     ]
-    # As at a terminal: a suite started in the background (`cmd &` in a script) inherits an
-    # ignored SIGINT, and Python installs no KeyboardInterrupt handler when SIGINT is ignored.
-    process = subprocess.Popen(
-        command,
-        cwd=ROOT,
-        stderr=subprocess.PIPE,
-        text=True,
-        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
-    )
-    deadline = time.monotonic() + 120
-    while not (out / "checkpoints" / "ppo_1024_steps.zip").is_file():
-        assert process.poll() is None and time.monotonic() < deadline
-        time.sleep(0.2)
-    process.send_signal(signal.SIGINT)
-    _, stderr = process.communicate(timeout=60)
-    assert process.returncode == 130, stderr
-    assert "--resume" in stderr
+    ready = (out / "checkpoints" / "ppo_1024_steps.zip").is_file
+    interrupt_when(command, ready, wait=120, stop=60)
     state = json.loads((out / "train_state.json").read_text())
     assert state["num_timesteps"] >= 1024
     assert load_model(out / "latest.zip").num_timesteps == state["num_timesteps"]
