@@ -85,6 +85,10 @@ class LeagueConfig:
     # Train each exploiter in a second process (the other core) while the learner trains on,
     # starting from the last exploiter; it joins the pool at the next mark.
     exploiter_parallel: bool = False
+    # Start each exploiter from the learner's weights as they are at its mark (it fights as well
+    # as the learner from its first step, and looks for the learner's holes from there), not
+    # from a new network (or, in parallel, the last exploiter).
+    exploiter_from_learner: bool = False
     # How exploiters play once in the pool: "sampled" (as snapshots do) or "argmax" (as a
     # measuring exploiter is judged).
     exploiter_pool_play: str = "sampled"
@@ -288,16 +292,19 @@ class LeagueCallback(BaseCallback):
 
     def _exploiter(self) -> None:
         """Pool an exploiter trained against the learner as it is now; in parallel, pool the one
-        trained since the last mark and start the next from it."""
+        trained since the last mark and start the next from it (or, `exploiter_from_learner`,
+        from the learner)."""
         if self.worker is not None and self.pending is not None:
             self.worker.collect()
             self._join("exploiters", f"exploiter_{self.pending['steps']}")
         steps = self.num_timesteps
         (self.folder / "exploiters").mkdir(parents=True, exist_ok=True)
         atomic_write(self.folder / "exploiters" / f"target_{steps}.zip", self.model.save)
-        last = f"{self.exploiters[-1]}.zip" if self.worker is not None and self.exploiters else ""
+        start = f"{self.exploiters[-1]}.zip" if self.worker is not None and self.exploiters else ""
+        if self.league.exploiter_from_learner:
+            start = f"target_{steps}.zip"  # the learner as it is now
         target_seed, seed = (int(self.rng.integers(2**31)) for _ in range(2))
-        args = {"steps": steps, "argmax": self.exploiter_argmax(), "init": last}
+        args = {"steps": steps, "argmax": self.exploiter_argmax(), "init": start}
         job = self._job(**args, target_seed=target_seed, seed=seed)
         if self.worker is None:
             self._join("exploiters", Path(train_exploiter(job)).stem)

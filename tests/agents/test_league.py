@@ -11,10 +11,12 @@ import torch
 
 pytest.importorskip("stable_baselines3")
 
+from agents.exploit import make_learner  # noqa: E402
 from agents.league import LeagueCallback, load_league_config, main, train_league  # noqa: E402
 from agents.league_exploiter import ExploiterJob, ExploiterWorker, train_exploiter  # noqa: E402
 from agents.league_pool import Pool, PoolOpponent  # noqa: E402
-from vooga_env.game.config import CONFIG_DIR, ConfigError  # noqa: E402
+from vooga_env.envs.sb3 import FightVecEnv  # noqa: E402
+from vooga_env.game.config import CONFIG_DIR, ConfigError, load_config  # noqa: E402
 from vooga_env.policies.batched import VectorOpponent, scripted_actions  # noqa: E402
 from vooga_env.policies.models import load_model  # noqa: E402
 
@@ -122,6 +124,25 @@ def test_the_same_seed_trains_the_same_league_and_init_starts_from_a_model(tmp_p
         assert torch.equal(a, b)  # the first snapshot is the model it started from
     with pytest.raises(ConfigError, match="init = 'nowhere.zip'"):
         train_league(load_league_config("smoke", init="nowhere.zip"), tmp_path / "d")
+
+
+@pytest.mark.parametrize("from_learner", [True, False])
+def test_exploiters_start_from_the_learner_when_asked(tmp_path, from_learner):
+    """With `exploiter_from_learner` the exploiter trained 512 steps from the learner saved at
+    its mark, so its weights are far closer to the learner's than a new network's are; without
+    it, they are not (the new network's seed is not the league's, 0, whose first weights the
+    learner has barely left)."""
+    config = load_league_config("smoke", total_timesteps=2048)
+    league = replace(config.league, exploiter_from_learner=from_learner)
+    train_league(replace(config, league=league), tmp_path, progress=False)
+    folder = tmp_path / "exploiters"
+    learner, exploiter = (
+        load_model(folder / f"{name}_2048.zip") for name in ("target", "exploiter")
+    )
+    fresh = make_learner(FightVecEnv(2, load_config("small"), opponent="idle"), seed=1)
+    layers = zip(*(m.policy.parameters() for m in (learner, exploiter, fresh)), strict=True)
+    moved, apart = zip(*[((e - t).abs().mean(), (f - t).abs().mean()) for t, e, f in layers])
+    assert (sum(moved) < sum(apart) / 10) == from_learner, (sum(moved), sum(apart))
 
 
 def parallel_config(tmp_path, total: int):

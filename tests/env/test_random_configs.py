@@ -113,6 +113,7 @@ def configs(draw) -> dict:
             "ko": draw(_number(0.0, 10.0)),
             "time_penalty": draw(_number(0.0, 0.1)),
             "edge": draw(_number(0.0, 5.0)),
+            "time_out": draw(_number(0.0, 10.0)),
         },
         "max_cycles": draw(st.integers(20, 200)),
         "frame_skip": draw(st.integers(1, 4)),

@@ -175,9 +175,13 @@ VARIANTS = {
         "platforms",
         dict(max_cycles=120, physics={"ground_friction": 0.0}, arena={"spawn_jitter": 0.0}),
     ),
-    "no edge shaping, a time penalty, 2 stocks": (
+    "no edge shaping, a time penalty, a win on time paid, 2 stocks": (
         "small",
-        dict(max_cycles=120, stocks=2, rewards={"edge": 0.0, "time_penalty": 0.01}),
+        dict(
+            max_cycles=120,
+            stocks=2,
+            rewards={"edge": 0.0, "time_penalty": 0.01, "time_out": 5.0},
+        ),
     ),
 }
 

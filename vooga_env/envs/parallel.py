@@ -48,7 +48,8 @@ class FightParallelEnv(ParallelEnv):
     health, `+ring_out` (5) for ringing the opponent out and `-ring_out` for being rung out, `ko`
     (5) likewise for knock-outs, plus `edge` (2) times the change in the fighter's room to its
     nearer stage edge minus the opponent's, over the stage width (potential-based shaping: it
-    telescopes, so the best policy is unchanged), minus `time_penalty` (0). Zero-sum by default.
+    telescopes, so the best policy is unchanged), minus `time_penalty` (0); when time runs out,
+    `time_out` (0) to the leader and minus `time_out` to the other. Zero-sum by default.
     `infos` carry the step's events (hits landed, damage dealt and taken, ring-out, KO) and, at
     the end, the `winner`.
 

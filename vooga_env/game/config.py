@@ -164,6 +164,8 @@ class RewardConfig:
     Per step: `damage` * (damage dealt - damage taken) / health, `ring_out` for ringing the
     opponent out (minus for being rung out), `ko` likewise for a knock-out, minus `time_penalty`,
     plus `edge` times the change in stage room over the opponent's (see HitAndRingOutReward).
+    When time runs out, `time_out` to the leader (the winner: more stocks, then more health) and
+    minus `time_out` to the other; nothing on a draw.
     """
 
     damage: float = 5.0
@@ -171,6 +173,7 @@ class RewardConfig:
     ko: float = 5.0
     time_penalty: float = 0.0
     edge: float = 2.0
+    time_out: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -359,7 +362,7 @@ _NON_NEGATIVE = {
         "block_damage",
         "block_knockback",
     ),
-    RewardConfig: ("damage", "ring_out", "ko", "time_penalty", "edge"),
+    RewardConfig: ("damage", "ring_out", "ko", "time_penalty", "edge", "time_out"),
 }
 
 

@@ -6,7 +6,7 @@ from typing import Protocol
 
 from vooga_env.game.config import RewardConfig
 from vooga_env.game.fight import Fight, StepEvents
-from vooga_env.game.formulas import edge_advantage, edge_room
+from vooga_env.game.formulas import edge_advantage, edge_room, time_out
 
 
 class RewardFn(Protocol):
@@ -17,7 +17,9 @@ class RewardFn(Protocol):
 
 
 class HitAndRingOutReward:
-    """Damage dealt minus damage taken (over max health), +/- a bonus for ring-outs and KOs.
+    """Damage dealt minus damage taken (over max health), +/- a bonus for ring-outs and KOs, and
+    for a win on time (`time_out`: the evaluation counts a win on time as a win, so a learner that
+    is not paid for it does not mind losing that way).
 
     `edge` adds potential-based shaping: each step, the change in (own room to the nearer stage
     edge - the opponent's room), over the stage width. It telescopes over an episode, so it leaves
@@ -40,12 +42,18 @@ class HitAndRingOutReward:
             potential = self._edge_advantage(fight)
             shaping = config.edge * (potential - self._potential)
             self._potential = potential
+        leader = None
+        if config.time_out and time_out(events.over, fight.steps, fight.config.max_cycles):
+            leader = fight.winner()
         rewards = []
         for me, other, sign in ((0, 1, 1.0), (1, 0, -1.0)):
             reward = config.damage * (events.damage_dealt[me] - events.damage_taken[me]) / health
             reward += config.ring_out * (events.rung_out[other] - events.rung_out[me])
             reward += config.ko * (events.knocked_out[other] - events.knocked_out[me])
-            rewards.append(reward + sign * shaping - config.time_penalty)
+            reward = reward + sign * shaping - config.time_penalty
+            if leader is not None:
+                reward += config.time_out if leader == me else -config.time_out
+            rewards.append(reward)
         return rewards[0], rewards[1]
 
     @staticmethod

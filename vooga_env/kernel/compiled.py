@@ -42,6 +42,7 @@ def kernel_arrays(params: FightParams) -> tuple[np.ndarray, ...]:
         head_slide=f.head_slide, block_damage=f.block_damage,
         block_knockback=f.block_knockback,
         r_damage=r.damage, r_ring_out=r.ring_out, r_ko=r.ko, r_time=r.time_penalty, edge=r.edge,
+        r_time_out=r.time_out,
         air_jumps=f.air_jumps, frame_skip=c.frame_skip, max_cycles=c.max_cycles,
         stocks=c.stocks,
         damage=params.attack_damage, knockback=params.attack_knockback,

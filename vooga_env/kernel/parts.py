@@ -78,7 +78,7 @@ FLOAT_PARAMS = (
     "f_width", "f_height", "crouch", "mass", "speed", "health", "jump", "fast_fall",
     "head_slide", "block_damage", "block_knockback",
     # the reward
-    "r_damage", "r_ring_out", "r_ko", "r_time", "edge",
+    "r_damage", "r_ring_out", "r_ko", "r_time", "edge", "r_time_out",
 )  # fmt: skip
 INT_PARAMS = ("air_jumps", "frame_skip", "max_cycles", "stocks")
 STAGE_PARAMS = ("blocks", "spawns")  # (4, B): x, y, width, height; (2,) spawn x
@@ -145,7 +145,7 @@ def params_record(fp, ip, blocks, spawns, af, ai):
     return Params(
         fp[0], fp[1], fp[2], fp[3], fp[4], fp[5], fp[6], fp[7], fp[8], fp[9], fp[10],
         fp[11], fp[12], fp[13], fp[14], fp[15], fp[16], fp[17], fp[18], fp[19], fp[20], fp[21],
-        fp[22], fp[23], fp[24], fp[25], fp[26],
+        fp[22], fp[23], fp[24], fp[25], fp[26], fp[27],
         ip[0], ip[1], ip[2], ip[3],
         u(blocks), u(spawns),
         u(af[0]), u(af[1]), u(af[2]), u(af[3]), u(af[4]), u(af[5]), u(af[6]), u(af[7]),
@@ -154,7 +154,7 @@ def params_record(fp, ip, blocks, spawns, af, ai):
 
 
 # params_record reads each field by position: a field added to the lists must be added there
-assert [len(FLOAT_PARAMS), len(INT_PARAMS), len(ATTACK_FLOATS), len(ATTACK_INTS)] == [27, 4, 8, 5]
+assert [len(FLOAT_PARAMS), len(INT_PARAMS), len(ATTACK_FLOATS), len(ATTACK_INTS)] == [28, 4, 8, 5]
 
 
 @inline

@@ -460,6 +460,15 @@ def reward(p, s, e, i, rewards):
 
 
 @stage
+def time_out_reward(p, winner, i, rewards):
+    """HitAndRingOutReward's win on time: + `time_out` to the leader of a fight that ran out of
+    time, - to the other, added last (as there); nothing on a draw."""
+    if p.r_time_out != 0.0 and (winner == 0 or winner == 1):
+        rewards[i, winner] += p.r_time_out
+        rewards[i, 1 - winner] -= p.r_time_out
+
+
+@stage
 def outcome(p, s, e, i):
     """(truncated, winner) after the step: 0 or 1 (more stocks, then more health), DRAW, or
     GOING_ON while the fight neither ended nor ran out of steps."""

@@ -28,6 +28,8 @@ def _step(p, s, e, actions, rewards, truncated, winner, start, stop):
         s.ct[S_STEPS, i] += 1
         stages.reward(p, s, e, i, rewards)
         truncated[i], winner[i] = stages.outcome(p, s, e, i)
+        if truncated[i]:
+            stages.time_out_reward(p, winner[i], i, rewards)
 
 
 @inline
