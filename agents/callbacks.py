@@ -1,7 +1,10 @@
-"""SB3 callbacks for training fighters: the curriculum ladder, self-play, and checkpoints."""
+"""SB3 callbacks for training fighters: the curriculum ladder, self-play, checkpoints, and a
+stop asked for by a signal."""
 
 from __future__ import annotations
 
+import signal
+import threading
 from abc import abstractmethod
 from collections import deque
 from collections.abc import Sequence
@@ -17,6 +20,33 @@ from vooga_env.tools.elo import START_RATING, update
 
 from .checkpoints import CHECKPOINTS, atomic_write, check_finite, save_checkpoint
 from .train_config import CurriculumConfig, SelfPlayConfig
+
+STOP_REQUESTED = threading.Event()
+
+
+def stop_on_sigterm() -> None:
+    """Take SIGTERM as Ctrl-C in this process: a KeyboardInterrupt now, and again at the next
+    training step (`StopWhenRequested`) if the first one was lost."""
+    signal.signal(signal.SIGTERM, _request_stop)
+
+
+def _request_stop(signum: int, frame: Any) -> None:
+    STOP_REQUESTED.set()
+    raise KeyboardInterrupt
+
+
+class StopWhenRequested(BaseCallback):
+    """Raise KeyboardInterrupt at the next step once a stop was requested (`stop_on_sigterm`).
+
+    A signal handler's exception is raised wherever the interpreter happens to be, and numpy
+    drops one raised in the `__array_function__` lookup it makes on an argument's type (an enum
+    member's, in the scripted fighters): a league sent SIGTERM once trained on for good.
+    """
+
+    def _on_step(self) -> bool:
+        if STOP_REQUESTED.is_set():
+            raise KeyboardInterrupt
+        return True
 
 
 class StepDecay(BaseCallback):

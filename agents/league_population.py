@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import json
 import multiprocessing
-import signal
 import sys
 from collections.abc import Callable, Sequence
 from multiprocessing.connection import wait
@@ -21,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from . import common
+from .callbacks import stop_on_sigterm
 from .checkpoints import STATE_FILE
 from .league_select import league_opponents, ship_best
 
@@ -67,7 +67,7 @@ def run_leagues(train: Callable[..., Any], runs: Sequence[tuple], total: int, pr
 
 def _interruptible(train: Callable[..., Any], *args: Any) -> None:
     """A league's process: SIGTERM is its Ctrl-C, and Ctrl-C ends it with exit code 130."""
-    signal.signal(signal.SIGTERM, signal.default_int_handler)
+    stop_on_sigterm()
     try:
         train(*args)
     except KeyboardInterrupt:

@@ -43,6 +43,7 @@ from .callbacks import (
     LearningRateSchedule,
     SelfPlayCallback,
     StateCheckpointCallback,
+    StopWhenRequested,
 )
 from .checkpoints import (
     STATE_FILE,
@@ -238,7 +239,8 @@ def learn_and_save(
     if fresh:
         save_checkpoint(model, folder, [opponents])  # step 0: from here on, --resume works
     checkpoints = StateCheckpointCallback(every, folder, [opponents])
-    callbacks = [opponents, checkpoints] + ([StopAfter(minutes)] if minutes else [])
+    callbacks = [opponents, checkpoints, StopWhenRequested()]
+    callbacks += [StopAfter(minutes)] if minutes else []
     ppo = config.ppo
     if ppo.ent_decay_steps:
         callbacks.append(EntropySchedule(ppo.ent_coef, ppo.ent_coef_final, ppo.ent_decay_steps))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import signal
 import subprocess
 import time
@@ -14,7 +15,7 @@ ROOT = Path(__file__).resolve().parents[2]
 def interrupt_when(command: list[str], ready: Callable[[], bool], wait: float, stop: float) -> str:
     """Run `command` from the checkout, send it SIGINT once `ready()` (within `wait` seconds),
     and return its stderr; it must exit with 130 within `stop` seconds and say how to
-    `--resume`."""
+    `--resume`. Whatever happens, nothing it started is left running."""
     # As at a terminal: a suite started in the background (`cmd &` in a script) inherits an
     # ignored SIGINT, and Python installs no KeyboardInterrupt handler when SIGINT is ignored.
     process = subprocess.Popen(
@@ -23,13 +24,33 @@ def interrupt_when(command: list[str], ready: Callable[[], bool], wait: float, s
         stderr=subprocess.PIPE,
         text=True,
         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+        start_new_session=True,  # its own group: killed whole if the test fails
     )
-    deadline = time.monotonic() + wait
-    while not ready():
-        assert process.poll() is None and time.monotonic() < deadline
-        time.sleep(0.2)
-    process.send_signal(signal.SIGINT)
-    _, stderr = process.communicate(timeout=stop)
+    try:
+        deadline = time.monotonic() + wait
+        while not ready():
+            assert process.poll() is None and time.monotonic() < deadline
+            time.sleep(0.2)
+        process.send_signal(signal.SIGINT)
+        _, stderr = process.communicate(timeout=stop)
+    finally:
+        left = _end_group(process.pid, grace=0 if process.poll() is None else 10)
+        process.wait()
+    assert not left, f"processes of {command} ran on after it exited"
     assert process.returncode == 130, stderr
     assert "--resume" in stderr
     return stderr
+
+
+def _end_group(group: int, grace: float) -> bool:
+    """Give process group `group` `grace` seconds to end, then kill what is left of it; returns
+    whether anything was."""
+    deadline = time.monotonic() + grace
+    try:
+        while time.monotonic() < deadline:
+            os.killpg(group, 0)
+            time.sleep(0.1)
+        os.killpg(group, signal.SIGKILL)
+    except ProcessLookupError:
+        return False
+    return True

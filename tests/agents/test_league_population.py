@@ -4,14 +4,18 @@ Ctrl-C stops them all, and `--resume` continues every one."""
 from __future__ import annotations
 
 import json
+import signal
 import sys
+from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
 
 pytest.importorskip("stable_baselines3")
 
+from agents.callbacks import STOP_REQUESTED, stop_on_sigterm  # noqa: E402
 from agents.league import load_league_config, train_league  # noqa: E402
+from agents.league_exploiter import ExploiterJob, train_exploiter  # noqa: E402
 from agents.league_population import LeagueFailed, run_leagues  # noqa: E402
 from tests.agents.interrupt import interrupt_when  # noqa: E402
 from vooga_env.game.config import CONFIG_DIR, ConfigError  # noqa: E402
@@ -59,6 +63,46 @@ def test_ctrl_c_stops_every_league_and_the_resumed_leagues_ship_the_best(tmp_pat
         for name in json.loads((league / "train_state.json").read_text())["exploiters"]
     }
     assert len(exploiters) == 2 and opponents == {"rush", "punisher", *exploiters}
+
+
+@contextmanager
+def stop_requested():
+    """A stop asked for whose own KeyboardInterrupt was lost (numpy drops one raised in some
+    attribute lookups): only the flag is set."""
+    STOP_REQUESTED.set()
+    try:
+        yield
+    finally:
+        STOP_REQUESTED.clear()
+
+
+def test_a_lost_interrupt_still_stops_the_league_at_its_next_step(tmp_path):
+    config = load_league_config("smoke")
+    with stop_requested(), pytest.raises(KeyboardInterrupt):
+        train_league(config, tmp_path, progress=False)
+    state = json.loads((tmp_path / "train_state.json").read_text())
+    assert state["num_timesteps"] < config.total_timesteps  # stopped, checkpointed on the way out
+    assert (tmp_path / "latest.zip").is_file() and not (tmp_path / "final.zip").exists()
+
+
+def test_a_lost_interrupt_still_stops_an_exploiter(tmp_path):
+    target = train_league(load_league_config("smoke", total_timesteps=64), tmp_path, progress=False)
+    job = ExploiterJob(str(target), True, 0, 0, 20_000, "small", 2, str(tmp_path / "e.zip"))
+    with stop_requested(), pytest.raises(KeyboardInterrupt):
+        train_exploiter(job)
+    assert not (tmp_path / "e.zip").exists()
+
+
+def test_sigterm_is_a_ctrl_c_that_asks_training_to_stop():
+    previous = signal.getsignal(signal.SIGTERM)
+    stop_on_sigterm()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            signal.raise_signal(signal.SIGTERM)
+        assert STOP_REQUESTED.is_set()
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+        STOP_REQUESTED.clear()
 
 
 def test_a_failed_league_process_is_an_error_that_names_its_folder(tmp_path):
