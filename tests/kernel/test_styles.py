@@ -1,15 +1,16 @@
-"""The scripted styles (aerial, punisher, spacer, edge_grappler, mixup): competent, registered,
-and quick to play on the batched engine (`vooga_env.tools.batch_match.batch_match`)."""
+"""The scripted styles (aerial, punisher, spacer, edge_grappler, mixup, shover): competent,
+registered, and quick to play on the batched engine (`vooga_env.tools.batch_match.batch_match`)."""
 
 from __future__ import annotations
 
 import pytest
 
+from vooga_env.game.actions import Action
 from vooga_env.policies import SCRIPTED
 from vooga_env.tools.batch_match import batch_match
 from vooga_env.tools.match import run_match
 
-STYLES = ("aerial", "punisher", "spacer", "edge_grappler", "mixup")
+STYLES = ("aerial", "punisher", "spacer", "edge_grappler", "mixup", "shover")
 
 
 @pytest.mark.parametrize("name", STYLES)
@@ -42,3 +43,17 @@ def test_a_batch_match_repeats_from_its_seed_and_counts_every_game():
 def test_the_single_env_plays_each_style_too(name):
     result = run_match(name, "idle", 2, seed=0, config="small", max_cycles=300)
     assert result.sides[0].wins == 2
+
+
+def crouch(observation):
+    return Action.DOWN
+
+
+def test_the_shover_walks_a_crouching_fighter_off_without_a_blow():
+    """Its one weapon is its body: a fighter that only crouches is pushed off the stage."""
+    result = run_match("shover", crouch, 4, seed=0, record_actions=True)
+    assert result.sides[0].wins == 4
+    for record, seats in zip(result.episodes, result.seats, strict=True):
+        assert record.ended_by == "ring_out"
+        assert record.damage_dealt[seats[0]] == 0.0
+        assert {Action.PUNCH, Action.KICK}.isdisjoint(pair[seats[0]] for pair in record.actions)

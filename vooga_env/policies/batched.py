@@ -168,6 +168,13 @@ def _edge_grappler(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
     return np.where(_reach(observations, "punch"), close, np.where(kick, Action.KICK, far))
 
 
+def _shover(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
+    block = _attacking(observations) & (
+        _opponent_reach(observations, "punch") | _opponent_reach(observations, "kick")
+    )
+    return np.where(block, Action.BLOCK, _toward(_column(observations, "opponent_x")))
+
+
 _MIXUP_STYLES = (_aerial, _punisher, _edge_grappler)
 
 
@@ -194,6 +201,7 @@ _DECIDE = {
     "spacer": _spacer,
     "edge_grappler": _edge_grappler,
     "mixup": _mixup,
+    "shover": _shover,
 }
 NAMES = (*_DECIDE, "random")
 assert set(NAMES) == set(SCRIPTED), "a scripted fighter without a batched version"

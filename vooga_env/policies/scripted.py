@@ -271,6 +271,19 @@ class EdgeGrappler(Drawn):
         return _toward(gap)
 
 
+class Shover(Drawn):
+    """Walks into the opponent and shoves it off the stage with its body; never attacks, and
+    blocks an attack that could reach it. A fighter that crouches when pressed is walked off."""
+
+    name = "shover"
+
+    @staticmethod
+    def choose(observation: np.ndarray, draw: float) -> int:
+        if _attacking(observation) and _threatened(observation):
+            return Action.BLOCK
+        return _toward(_gap(observation))
+
+
 class MixUp(Drawn):
     """Changes style every twelfth of the clock: aerial, punisher, edge grappler in turn."""
 
@@ -297,5 +310,6 @@ SCRIPTED: dict[str, type[Scripted]] = {
         Spacer,
         EdgeGrappler,
         MixUp,
+        Shover,
     )
 }
