@@ -116,6 +116,11 @@ def _opponent_reach(observations: np.ndarray, move: str) -> np.ndarray:
     return _column(observations, f"opponent_{move}_reach") != 0
 
 
+def _threatened(observations: np.ndarray) -> np.ndarray:
+    """policies._threatened: could the opponent's punch or kick, started now, touch it?"""
+    return _opponent_reach(observations, "punch") | _opponent_reach(observations, "kick")
+
+
 def _aerial(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
     gap = _column(observations, "opponent_x")
     grounded = _column(observations, "self_on_ground") > 0
@@ -137,7 +142,7 @@ def _punisher(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
     kick_or_walk = np.where(_reach(observations, "kick"), Action.KICK, _toward(gap))
     strike = np.where(_reach(observations, "punch"), Action.PUNCH, kick_or_walk)
     poke = ~attacking & _reach(observations, "kick") & (draws < 0.3)
-    threatened = _opponent_reach(observations, "punch") | _opponent_reach(observations, "kick")
+    threatened = _threatened(observations)
     evade = np.where(_behind(observations, gap) > 0.1, _away(gap), _jump_toward(gap))
     defend = np.where(attacking, Action.BLOCK, evade)
     bait = np.where(draws < 0.6, _toward(gap), Action.IDLE)
@@ -169,9 +174,7 @@ def _edge_grappler(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
 
 
 def _shover(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
-    block = _attacking(observations) & (
-        _opponent_reach(observations, "punch") | _opponent_reach(observations, "kick")
-    )
+    block = _attacking(observations) & _threatened(observations)
     return np.where(block, Action.BLOCK, _toward(_column(observations, "opponent_x")))
 
 
