@@ -74,9 +74,11 @@ def test_the_wheel_holds_the_package_and_every_config_and_nothing_else(installed
     assert not any("__pycache__" in n or n.endswith((".nbi", ".nbc")) for n in names)
     entry_points = next(n for n in names if n.endswith("entry_points.txt"))
     commands = zipfile.ZipFile(wheel).read(entry_points).decode()
-    for command in ("match", "tournament", "train", "evaluate", "play", "train_rllib"):
+    for command in ("match", "tournament", "evaluate", "play"):
+        assert f"vooga-{command} = vooga_env.agents.{command}:main" in commands
+    for command in ("train", "league", "exploit", "train_rllib"):  # they check for their extra
         script = command.replace("_", "-")
-        assert f"vooga-{script} = vooga_env.agents.{command}:main" in commands
+        assert f"vooga-{script} = vooga_env.agents.cli:{command}" in commands
 
 
 def test_every_config_and_env_face_works_from_outside_the_checkout(installed):
@@ -117,6 +119,31 @@ def test_the_console_commands_run_and_write_only_where_asked(installed):
         assert (folder / "league" / league / "exploiters" / "exploiter_1024.zip").is_file()
     assert (folder / "league" / "final.zip").is_file()
     assert sorted(p.name for p in folder.iterdir()) == ["elo.json", "league", "run"]
+
+
+@pytest.mark.parametrize(
+    ("command", "module", "extra"),
+    [
+        ("vooga-league", "stable_baselines3", "train"),
+        ("vooga-exploit", "stable_baselines3", "train"),
+        ("vooga-train", "stable_baselines3", "train"),
+        ("vooga-train-rllib", "ray", "rllib"),
+    ],
+)
+def test_a_command_without_its_extra_names_the_extra(installed, command, module, extra):
+    """As on a machine that installed the bare wheel: the module the extra brings is missing."""
+    _, _, _, work, env = installed
+    missing = work / f"without_{module}"
+    missing.mkdir(exist_ok=True)
+    (missing / f"{module}.py").write_text(
+        f'raise ModuleNotFoundError("No module named {module!r}", name={module!r})\n'
+    )
+    done = subprocess.run([command, "--help"], cwd=work, env={**env, "PYTHONPATH": str(missing)},
+                          capture_output=True, text=True, timeout=120)  # fmt: skip
+    assert done.returncode == 1, done.stdout + done.stderr
+    assert "Traceback" not in done.stderr
+    assert f"No module named '{module}'" in done.stderr
+    assert f"pip install 'vooga-env[{extra}]'" in done.stderr
 
 
 def test_the_readme_python_snippets_run_from_the_wheel(installed):

@@ -1,0 +1,40 @@
+"""The console commands that need an extra: without it they say which one to install, in one
+line, instead of a traceback from an import deep inside (`pip install vooga-env` alone brings
+the engine, the env faces and the scripted fighters, not the RL stack)."""
+
+from __future__ import annotations
+
+import importlib
+import sys
+
+# the module a command imports first -> the extra that brings it
+PROVIDED_BY = {"stable_baselines3": "train", "torch": "train", "ray": "rllib"}
+
+
+def _main(command: str, needs: tuple[str, ...]) -> int:
+    for module in needs:
+        try:
+            importlib.import_module(module)
+        except ImportError as error:
+            extra = PROVIDED_BY[module]
+            sys.exit(
+                f"vooga-{command.replace('_', '-')}: {error}; it comes with the {extra!r} extra: "
+                f"pip install 'vooga-env[{extra}]'"
+            )
+    return importlib.import_module(f".{command}", __package__).main()
+
+
+def train() -> int:
+    return _main("train", ("stable_baselines3",))
+
+
+def league() -> int:
+    return _main("league", ("stable_baselines3",))
+
+
+def exploit() -> int:
+    return _main("exploit", ("stable_baselines3",))
+
+
+def train_rllib() -> int:
+    return _main("train_rllib", ("ray", "torch"))
