@@ -1,6 +1,6 @@
 """The console commands that need an extra: without it they say which one to install, in one
 line, instead of a traceback from an import deep inside (`pip install vooga-env` alone brings
-the engine, the env faces and the scripted fighters, not the RL stack)."""
+the engine, the env faces and the scripted fighters, not the RL stack or pygame)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import importlib
 import sys
 
 # the module a command imports first -> the extra that brings it
-PROVIDED_BY = {"stable_baselines3": "train", "torch": "train", "ray": "rllib"}
+PROVIDED_BY = {"stable_baselines3": "train", "torch": "train", "ray": "rllib", "pygame": "render"}
 
 
 def _main(command: str, needs: tuple[str, ...]) -> int:
@@ -34,6 +34,10 @@ def league() -> int:
 
 def exploit() -> int:
     return _main("exploit", ("stable_baselines3",))
+
+
+def play() -> int:
+    return _main("play", ("pygame",))
 
 
 def train_rllib() -> int:

@@ -74,9 +74,10 @@ def test_the_wheel_holds_the_package_and_every_config_and_nothing_else(installed
     assert not any("__pycache__" in n or n.endswith((".nbi", ".nbc")) for n in names)
     entry_points = next(n for n in names if n.endswith("entry_points.txt"))
     commands = zipfile.ZipFile(wheel).read(entry_points).decode()
-    for command in ("match", "tournament", "evaluate", "play"):
+    for command in ("match", "tournament", "evaluate"):
         assert f"vooga-{command} = vooga_env.agents.{command}:main" in commands
-    for command in ("train", "league", "exploit", "train_rllib"):  # they check for their extra
+    # these check for their extra first
+    for command in ("train", "league", "exploit", "play", "train_rllib"):
         script = command.replace("_", "-")
         assert f"vooga-{script} = vooga_env.agents.cli:{command}" in commands
 
@@ -128,6 +129,7 @@ def test_the_console_commands_run_and_write_only_where_asked(installed):
         ("vooga-exploit", "stable_baselines3", "train"),
         ("vooga-train", "stable_baselines3", "train"),
         ("vooga-train-rllib", "ray", "rllib"),
+        ("vooga-play", "pygame", "render"),
     ],
 )
 def test_a_command_without_its_extra_names_the_extra(installed, command, module, extra):
