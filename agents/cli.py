@@ -5,21 +5,28 @@ the engine, the env faces and the scripted fighters, not the RL stack or pygame)
 from __future__ import annotations
 
 import importlib
+import importlib.util
 import sys
 
 # the module a command imports first -> the extra that brings it
 PROVIDED_BY = {"stable_baselines3": "train", "torch": "train", "ray": "rllib", "pygame": "render"}
 
 
+def _installed(module: str) -> bool:
+    """Found without importing it (`import ray` alone takes seconds, before `--help`)."""
+    try:
+        return importlib.util.find_spec(module) is not None
+    except ImportError:  # an import hook that refuses it
+        return False
+
+
 def _main(command: str, needs: tuple[str, ...]) -> int:
     for module in needs:
-        try:
-            importlib.import_module(module)
-        except ImportError as error:
+        if not _installed(module):
             extra = PROVIDED_BY[module]
             sys.exit(
-                f"vooga-{command.replace('_', '-')}: {error}; it comes with the {extra!r} extra: "
-                f"pip install 'vooga-env[{extra}]'"
+                f"vooga-{command.replace('_', '-')}: no module named {module!r}; it comes with the "
+                f"{extra!r} extra: pip install 'vooga-env[{extra}]'"
             )
     return importlib.import_module(f".{command}", __package__).main()
 

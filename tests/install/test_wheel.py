@@ -133,18 +133,24 @@ def test_the_console_commands_run_and_write_only_where_asked(installed):
     ],
 )
 def test_a_command_without_its_extra_names_the_extra(installed, command, module, extra):
-    """As on a machine that installed the bare wheel: the module the extra brings is missing."""
+    """As on a machine that installed the bare wheel: the module the extra brings is not found
+    (a `sitecustomize` on the path puts an import hook first that refuses it)."""
     _, _, _, work, env = installed
     missing = work / f"without_{module}"
     missing.mkdir(exist_ok=True)
-    (missing / f"{module}.py").write_text(
-        f'raise ModuleNotFoundError("No module named {module!r}", name={module!r})\n'
+    (missing / "sitecustomize.py").write_text(
+        "import sys\n"
+        "class Refuse:\n"
+        "    def find_spec(self, name, path=None, target=None):\n"
+        f"        if name.split('.')[0] == {module!r}:\n"
+        f"            raise ModuleNotFoundError('No module named {module}', name={module!r})\n"
+        "sys.meta_path.insert(0, Refuse())\n"
     )
     done = subprocess.run([command, "--help"], cwd=work, env={**env, "PYTHONPATH": str(missing)},
                           capture_output=True, text=True, timeout=120)  # fmt: skip
     assert done.returncode == 1, done.stdout + done.stderr
     assert "Traceback" not in done.stderr
-    assert f"No module named '{module}'" in done.stderr
+    assert f"no module named '{module}'" in done.stderr
     assert f"pip install 'vooga-env[{extra}]'" in done.stderr
 
 
