@@ -1,9 +1,12 @@
 """Shared by the RLlib tests: one simulated two-node Ray cluster for the whole folder (its files
-under the test's tmp folder, no Ray process left when it stops), and the smoke run on it."""
+in a short folder of its own, no Ray process left when it stops), and the smoke run on it."""
 
 import os
 import shutil
+import tempfile
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -33,6 +36,24 @@ def assert_no_ray_left(temp_dir: Path) -> None:
     assert ray_processes(temp_dir) == []
 
 
+@contextmanager
+def short_temp_dir() -> Iterator[Path]:
+    """A new folder right under /tmp, removed afterwards: Ray's socket paths under it must fit
+    AF_UNIX's 107 bytes, which pytest's own tmp folders pass under pytest-xdist (`popen-gw0/`)."""
+    folder = Path(tempfile.mkdtemp(prefix="ray", dir="/tmp"))
+    try:
+        yield folder
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+@pytest.fixture
+def ray_temp_dir() -> Iterator[Path]:
+    """`short_temp_dir`, for a test that starts a Ray of its own."""
+    with short_temp_dir() as folder:
+        yield folder
+
+
 @dataclass(frozen=True)
 class RayCluster:
     temp_dir: Path
@@ -40,16 +61,15 @@ class RayCluster:
 
 
 @pytest.fixture(scope="package")
-def ray_cluster(tmp_path_factory):
+def ray_cluster():
     """Two Ray nodes of one CPU each in this process (`ray.cluster_utils.Cluster`), shared by
     every test here: starting Ray is most of what a test on it costs."""
     ray = pytest.importorskip("ray")
     from ray.cluster_utils import Cluster
 
-    temp_dir = tmp_path_factory.mktemp("ray")  # short: Ray's socket paths must fit 107 bytes
-    (temp_dir / "ray").mkdir()
-    node = {"num_cpus": 1, "temp_dir": str(temp_dir / "ray"), "include_dashboard": False}
-    with pytest.MonkeyPatch.context() as patch:
+    with short_temp_dir() as temp_dir, pytest.MonkeyPatch.context() as patch:
+        (temp_dir / "ray").mkdir()
+        node = {"num_cpus": 1, "temp_dir": str(temp_dir / "ray"), "include_dashboard": False}
         patch.setenv("RAY_TMPDIR", str(temp_dir))  # where Cluster writes its address file
         cluster = Cluster()
         try:
@@ -63,7 +83,7 @@ def ray_cluster(tmp_path_factory):
         finally:
             ray.shutdown()
             cluster.shutdown()
-    assert_no_ray_left(temp_dir)
+        assert_no_ray_left(temp_dir)
 
 
 @dataclass(frozen=True)

@@ -180,9 +180,9 @@ def test_bad_config_keys_are_named():
 
 
 @pytest.mark.slow  # ~25 s: a Ray of its own in a subprocess
-def test_ctrl_c_keeps_the_last_checkpoint(tmp_path, tmp_path_factory, no_ray_left):
+def test_ctrl_c_keeps_the_last_checkpoint(tmp_path, ray_temp_dir, no_ray_left):
     out = tmp_path / "run"
-    temp_dir = tmp_path_factory.mktemp("ray")  # short: Ray's socket paths must fit 107 bytes
+    temp_dir = ray_temp_dir
     command = [sys.executable, "-m", "agents.train_rllib", "--config", "rllib_smoke"]
     command += ["--out", str(out), "--iterations", "1000"]
     # As at a terminal: a suite started in the background inherits an ignored SIGINT.
