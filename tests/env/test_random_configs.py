@@ -82,6 +82,7 @@ def configs(draw) -> dict:
             "blocks": stage,
             "spawns": spawns,
             "spawn_jitter": draw(st.one_of(st.just(0.0), _number(0.0, 60.0))),
+            "random_sides": draw(st.booleans()),
         },
         "physics": {
             "gravity": draw(_number(1e-5, 0.01)),

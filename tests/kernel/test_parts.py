@@ -140,6 +140,20 @@ def test_seeding_matches_the_single_env_and_continues_its_stream():
     assert not np.array_equal(first[0], first[1])
 
 
+def test_random_sides_swaps_the_spawns_on_a_seeded_coin_as_the_engine_does():
+    import vooga_env
+
+    sides = {"random_sides": True}
+    first = VectorFight(16, arena=sides).reset(seed=0)
+    swapped = first[:, 0, 0] > 0  # fighter_0's own x: right of the centre
+    assert 0 < swapped.sum() < 16
+    for i in range(16):
+        env = vooga_env.parallel_env(arena=sides, backend="engine")
+        obs, _ = env.reset(seed=i)
+        assert np.array_equal(first[i, 0], obs["fighter_0"])
+    assert (VectorFight(16).reset(seed=0)[:, 0, 0] < 0).all()
+
+
 def test_without_numba_the_batch_says_how_to_install_it():
     script = """
 import sys

@@ -1,4 +1,4 @@
-"""The scripted styles (aerial, punisher, spacer, edge_grappler, mixup, shover): competent,
+"""The scripted styles (aerial, punisher, spacer, edge_grappler, mixup, shover, staller): competent,
 registered, and quick to play on the batched engine (`vooga_env.tools.batch_match.batch_match`)."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from vooga_env.policies import SCRIPTED
 from vooga_env.tools.batch_match import batch_match
 from vooga_env.tools.match import run_match
 
-STYLES = ("aerial", "punisher", "spacer", "edge_grappler", "mixup", "shover")
+STYLES = ("aerial", "punisher", "spacer", "edge_grappler", "mixup", "shover", "staller")
 
 
 @pytest.mark.parametrize("name", STYLES)
@@ -28,7 +28,8 @@ def test_the_styles_are_not_one_fighter():
         for name in STYLES
     }
     assert len(set(scores.values())) > 1
-    assert all(0 < score < 80 for score in scores.values()), scores
+    games = 20 * (len(STYLES) - 1)
+    assert all(0 < score < games for score in scores.values()), scores
 
 
 def test_a_batch_match_repeats_from_its_seed_and_counts_every_game():
@@ -57,3 +58,18 @@ def test_the_shover_walks_a_crouching_fighter_off_without_a_blow():
         assert record.ended_by == "ring_out"
         assert record.damage_dealt[seats[0]] == 0.0
         assert {Action.PUNCH, Action.KICK}.isdisjoint(pair[seats[0]] for pair in record.actions)
+
+
+def test_the_staller_waits_crouched_then_takes_a_lead_and_plays_for_time():
+    """Level, it crouches and jabs where it stands for the first half of the clock; then it walks
+    in, lands a hit, and crouches and jabs again until the time runs out with it ahead."""
+    stall = {Action.DOWN, Action.PUNCH}
+    result = run_match("staller", "idle", 2, seed=0, record_actions=True)
+    assert result.sides[0].wins == 2
+    for record, seats in zip(result.episodes, result.seats, strict=True):
+        assert record.ended_by == "time"
+        actions = [pair[seats[0]] for pair in record.actions]
+        half = len(actions) // 2
+        assert set(actions[: half - 1]) <= stall
+        assert not set(actions[half + 1 :]) <= stall  # it went in to attack
+        assert set(actions[-100:]) <= stall

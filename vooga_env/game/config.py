@@ -68,6 +68,8 @@ class ArenaConfig:
     `spawns` holds each fighter's spawn x (the left edge, px); fighters spawn standing on the
     highest block under them, so never inside one. `spawn_jitter` (px) moves each spawn by a
     seeded random amount, so every x within `spawn_jitter` of a spawn must have a block under it.
+    `random_sides` then tosses a seeded coin for which fighter takes which spawn; each still faces
+    its seat's way (fighter_0 right), so a swapped fight starts back to back, as after a jump over.
     """
 
     width: float = 800.0
@@ -75,6 +77,7 @@ class ArenaConfig:
     blocks: tuple[Block, ...] = (Block(120.0, 360.0, 560.0, 40.0),)
     spawns: tuple[float, ...] = (240.0, 520.0)
     spawn_jitter: float = 0.0
+    random_sides: bool = False
 
     @property
     def stage_left(self) -> float:

@@ -130,14 +130,17 @@ class Fight:
         ]
 
     def reset(self, rng: np.random.Generator) -> None:
-        """Start a new fight: full stocks and health, spawns jittered by `rng`."""
+        """Start a new fight: full stocks and health, spawns jittered (and, with `random_sides`,
+        swapped half the time) by `rng`."""
         if not isinstance(rng, np.random.Generator):
             raise TypeError(f"rng must be a numpy Generator (np.random.default_rng), got {rng!r}")
-        jitter = self.config.arena.spawn_jitter
+        arena = self.config.arena
+        jitter = arena.spawn_jitter
         self.spawns = [
-            x + (float(rng.uniform(-jitter, jitter)) if jitter > 0 else 0.0)
-            for x in self.config.arena.spawns
+            x + (float(rng.uniform(-jitter, jitter)) if jitter > 0 else 0.0) for x in arena.spawns
         ]
+        if arena.random_sides and rng.random() < 0.5:
+            self.spawns.reverse()
         for fighter in self.fighters:
             fighter.stocks = self.config.stocks
             self._respawn(fighter)

@@ -44,7 +44,7 @@ def kernel_arrays(params: FightParams) -> tuple[np.ndarray, ...]:
         r_damage=r.damage, r_ring_out=r.ring_out, r_ko=r.ko, r_time=r.time_penalty, edge=r.edge,
         r_time_out=r.time_out,
         air_jumps=f.air_jumps, frame_skip=c.frame_skip, max_cycles=c.max_cycles,
-        stocks=c.stocks,
+        stocks=c.stocks, random_sides=int(c.arena.random_sides),
         damage=params.attack_damage, knockback=params.attack_knockback,
         growth=params.attack_growth, cos=params.attack_cos, sin=params.attack_sin,
         hitbox_w=params.hitbox_w, hitbox_h=params.hitbox_h,

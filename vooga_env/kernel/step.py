@@ -53,8 +53,9 @@ def _frame_of(p, s, e, x, actions, i):
 
 @inline
 def _reset(p, s, rng, index):
-    """`Fight.reset` of the fights `index`: jittered spawns (each fight's PCG64 stream), the
-    block under each, full stocks, both respawned, the reward's edge potential."""
+    """`Fight.reset` of the fights `index`: jittered spawns (each fight's PCG64 stream), swapped
+    on a coin toss with `random_sides`, the block under each, full stocks, both respawned, the
+    reward's edge potential."""
     jitter = p.spawn_jitter
     for i in index:
         for f in range(2):
@@ -63,6 +64,12 @@ def _reset(p, s, rng, index):
                 s.fl[S_SPAWN_X, f, i] = p.spawns[f] + (-jitter + (jitter - -jitter) * draw)
             else:
                 s.fl[S_SPAWN_X, f, i] = p.spawns[f] + 0.0
+        if p.random_sides:
+            toss = _next_double(rng.state_hi, rng.state_lo, rng.inc_hi, rng.inc_lo, i)
+            if toss < 0.5:
+                left, right = s.fl[S_SPAWN_X, 0, i], s.fl[S_SPAWN_X, 1, i]
+                s.fl[S_SPAWN_X, 0, i], s.fl[S_SPAWN_X, 1, i] = right, left
+        for f in range(2):
             s.fl[S_SPAWN_TOP, f, i] = _spawn_top(p, s.fl[S_SPAWN_X, f, i])
         for f in range(2):
             s.it[S_STOCKS, f, i] = p.stocks

@@ -178,6 +178,33 @@ def _shover(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
     return np.where(block, Action.BLOCK, _toward(_column(observations, "opponent_x")))
 
 
+def _standing(observations: np.ndarray) -> np.ndarray:
+    """policies._standing: +1 where it would win on time (more stocks, then more health), -1 where
+    it would lose, 0 where level."""
+    stocks = np.sign(
+        _column(observations, "self_stocks") - _column(observations, "opponent_stocks")
+    )
+    health = np.sign(
+        _column(observations, "self_health") - _column(observations, "opponent_health")
+    )
+    return np.where(stocks != 0, stocks, health)
+
+
+def _staller(observations: np.ndarray, draws: np.ndarray) -> np.ndarray:
+    crouched = _column(observations, "self_crouching") != 0
+    stall = np.where(crouched, Action.PUNCH, Action.DOWN)
+    block = _attacking(observations) & _threatened(observations)
+    kick_or_walk = np.where(
+        _reach(observations, "kick"), Action.KICK, _toward(_column(observations, "opponent_x"))
+    )
+    fight = np.where(
+        block, Action.BLOCK, np.where(_reach(observations, "punch"), Action.PUNCH, kick_or_walk)
+    )
+    standing = _standing(observations)
+    stalling = (standing > 0) | ((standing == 0) & (_column(observations, "time_left") > 0.5))
+    return np.where(stalling, stall, fight)
+
+
 _MIXUP_STYLES = (_aerial, _punisher, _edge_grappler)
 
 
@@ -205,6 +232,7 @@ _DECIDE = {
     "edge_grappler": _edge_grappler,
     "mixup": _mixup,
     "shover": _shover,
+    "staller": _staller,
 }
 NAMES = (*_DECIDE, "random")
 assert set(NAMES) == set(SCRIPTED), "a scripted fighter without a batched version"

@@ -284,6 +284,35 @@ class Shover(Drawn):
         return _toward(_gap(observation))
 
 
+def _standing(observation: np.ndarray) -> int:
+    """+1 if it would win were time to run out now (more stocks, then more health), -1 if it
+    would lose, 0 on a draw."""
+    own = (observation[_I["self_stocks"]], observation[_I["self_health"]])
+    other = (observation[_I["opponent_stocks"]], observation[_I["opponent_health"]])
+    return int(own > other) - int(own < other)
+
+
+class Staller(Drawn):
+    """Plays for time: crouches where it stands and punches from the crouch without end (a low
+    jab that meets a fighter walking in) while it leads, or while it is level in the first half
+    of the clock; otherwise closes in and attacks, blocking what could reach it, until it leads
+    again. A fighter that waits is hit in the second half and loses on time: what a fresh
+    exploiter did to the league's model after one punch (docs/league.md, "Playing for time")."""
+
+    name = "staller"
+
+    @staticmethod
+    def choose(observation: np.ndarray, draw: float) -> int:
+        standing = _standing(observation)
+        if standing > 0 or (standing == 0 and observation[_I["time_left"]] > 0.5):
+            return Action.PUNCH if observation[_I["self_crouching"]] else Action.DOWN
+        if _attacking(observation) and _threatened(observation):
+            return Action.BLOCK
+        if _reach(observation, "self", "punch"):
+            return Action.PUNCH
+        return Action.KICK if _reach(observation, "self", "kick") else _toward(_gap(observation))
+
+
 class MixUp(Drawn):
     """Changes style every twelfth of the clock: aerial, punisher, edge grappler in turn."""
 
@@ -311,5 +340,6 @@ SCRIPTED: dict[str, type[Scripted]] = {
         EdgeGrappler,
         MixUp,
         Shover,
+        Staller,
     )
 }
