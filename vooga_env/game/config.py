@@ -68,8 +68,8 @@ class ArenaConfig:
     `spawns` holds each fighter's spawn x (the left edge, px); fighters spawn standing on the
     highest block under them, so never inside one. `spawn_jitter` (px) moves each spawn by a
     seeded random amount, so every x within `spawn_jitter` of a spawn must have a block under it.
-    `random_sides` then tosses a seeded coin for which fighter takes which spawn; each still faces
-    its seat's way (fighter_0 right), so a swapped fight starts back to back, as after a jump over.
+    `random_sides` then tosses a seeded coin for which fighter takes which spawn: a swapped fight
+    starts crossed over, as after a jump over (each turns to face the other on its first frame).
     """
 
     width: float = 800.0
