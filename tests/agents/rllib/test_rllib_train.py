@@ -182,7 +182,6 @@ def test_bad_config_keys_are_named():
 @pytest.mark.slow  # ~25 s: a Ray of its own in a subprocess
 def test_ctrl_c_keeps_the_last_checkpoint(tmp_path, ray_temp_dir, no_ray_left):
     out = tmp_path / "run"
-    temp_dir = ray_temp_dir
     command = [sys.executable, "-m", "agents.train_rllib", "--config", "rllib_smoke"]
     command += ["--out", str(out), "--iterations", "1000"]
     # As at a terminal: a suite started in the background inherits an ignored SIGINT.
@@ -191,7 +190,7 @@ def test_ctrl_c_keeps_the_last_checkpoint(tmp_path, ray_temp_dir, no_ray_left):
         cwd=ROOT,
         stderr=subprocess.PIPE,
         text=True,
-        env={**os.environ, "RAY_TMPDIR": str(temp_dir)},
+        env={**os.environ, "RAY_TMPDIR": str(ray_temp_dir)},
         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
     deadline = time.monotonic() + 120
@@ -205,7 +204,7 @@ def test_ctrl_c_keeps_the_last_checkpoint(tmp_path, ray_temp_dir, no_ray_left):
     state = json.loads((out / "train_state.json").read_text())
     assert 1 <= state["iteration"] < 1000
     assert make_policy(out / "main.npz").act(np.zeros(OBSERVATION_SIZE)) in range(10)
-    no_ray_left(temp_dir)
+    no_ray_left(ray_temp_dir)
 
 
 def default_module(observation_space, **model: Any) -> Any:
