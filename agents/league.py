@@ -60,7 +60,7 @@ from .league_exploiter import ExploiterJob, ExploiterWorker, train_exploiter
 from .league_pool import WEIGHTINGS, Pool, PoolOpponent
 from .league_population import LeagueFailed, league_folder, run_leagues, ship_best_league
 from .league_select import PLAYS, SELECTION_FILE, league_opponents, ship_best
-from .train import learn_and_save, load_init, start_from
+from .train import learn_and_save, load_init, policy_class, start_from
 from .train_config import PPOConfig
 
 EXPLOITER_PLAYS = ("sampled", "argmax", "alternate")
@@ -367,7 +367,7 @@ def build(config: LeagueRunConfig, folder: Path, state: dict[str, Any], resume: 
     else:
         tensorboard = str(folder / "tb") if importlib.util.find_spec("tensorboard") else None
         model = PPO(
-            "MlpPolicy",
+            policy_class(ppo),
             envs,
             **{key: getattr(ppo, key) for key in _PPO_KEYS},
             policy_kwargs={"net_arch": list(ppo.net_arch)},

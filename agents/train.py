@@ -35,6 +35,7 @@ from stable_baselines3.common.vec_env import DummyVecEnv, VecEnv, VecFrameStack,
 
 from vooga_env.envs.gym_env import FightEnv
 from vooga_env.game.config import ConfigError
+from vooga_env.policies.facing_policy import mlp_policy
 from vooga_env.policies.models import load_model
 
 from .callbacks import (
@@ -86,11 +87,16 @@ def make_envs(config: TrainConfig, opponent: str = "idle", seed: int | None = No
     return envs
 
 
+def policy_class(ppo: PPOConfig, obs_type: str = "vector") -> Any:
+    """SB3's policy for the config: CnnPolicy on pixels, else as `frame` says (mlp_policy)."""
+    return "CnnPolicy" if obs_type == "pixels" else mlp_policy(ppo.frame)
+
+
 def build_model(config: TrainConfig, envs: VecEnv, folder: Path) -> PPO:
     ppo = config.ppo
     tensorboard = str(folder / "tb") if importlib.util.find_spec("tensorboard") else None
     return PPO(
-        "CnnPolicy" if config.obs_type == "pixels" else "MlpPolicy",
+        policy_class(ppo, config.obs_type),
         envs,
         learning_rate=ppo.learning_rate,
         n_steps=ppo.n_steps,

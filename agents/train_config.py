@@ -15,6 +15,7 @@ from vooga_env.game.config import (
     overridden_source,
     read_toml,
 )
+from vooga_env.game.facing import FRAMES
 from vooga_env.game.pixels import pixel_spec
 from vooga_env.policies import SCRIPTED
 
@@ -67,6 +68,9 @@ class PPOConfig:
     clip_range: float = 0.2
     net_arch: tuple[int, ...] = (64, 64)
     normalize_reward: bool = False  # SB3's VecNormalize on rewards only (inference needs nothing)
+    # "opponent": the network sees every fight turned to face its opponent (FacingPolicy), so a
+    # crossed-over fight is one it knows; "seat": as the env mirrors it, by seat.
+    frame: str = "seat"
 
     def __post_init__(self) -> None:
         # SB3 takes all of these and fails (or trains nothing) only once training has started.
@@ -87,6 +91,8 @@ class PPOConfig:
                 _refuse(key, getattr(self, key), "must be >= 0")
         if any(width < 1 for width in self.net_arch):
             _refuse("net_arch", list(self.net_arch), "every layer needs >= 1 unit")
+        if self.frame not in FRAMES:
+            _refuse("frame", self.frame, f"one of {', '.join(FRAMES)}")
 
 
 @dataclass(frozen=True)
@@ -191,6 +197,8 @@ class TrainConfig:
         _at_least(self, 1, "frame_stack")
         if self.obs_type == "vector" and self.frame_stack != 1:
             _refuse("frame_stack", self.frame_stack, "1 with obs_type = 'vector'")
+        if self.obs_type == "pixels" and self.ppo.frame != "seat":
+            _refuse("ppo.frame", self.ppo.frame, "'seat' with obs_type = 'pixels'")
         if self.minutes < 0:
             _refuse("minutes", self.minutes, "must be >= 0 (0: no time budget)")
         try:

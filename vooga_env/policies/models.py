@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from vooga_env.game.actions import Action
+from vooga_env.game.facing import FRAMES, TURNED_ACTIONS, face_opponent
 from vooga_env.game.observations import OBSERVATION_SIZE
 from vooga_env.policies.base import Policy
 
@@ -57,16 +58,25 @@ class MLPPolicy(Policy):
     with `activation` between them and the last layer's output the action logits.
 
     `deterministic` takes the most likely action; otherwise actions are sampled from the
-    softmax of the logits with a generator seeded by `reset(seed)`.
+    softmax of the logits with a generator seeded by `reset(seed)`. `frame = "opponent"`: the
+    network plays in the opponent-facing frame (`vooga_env.game.facing`).
     """
 
     def __init__(
-        self, layers: Layers, activation: str, name: str = "mlp", deterministic: bool = True
+        self,
+        layers: Layers,
+        activation: str,
+        name: str = "mlp",
+        deterministic: bool = True,
+        frame: str = "seat",
     ) -> None:
         if activation not in ACTIVATIONS:
             raise ValueError(
                 f"activation {activation!r} is not supported: one of {', '.join(ACTIVATIONS)}"
             )
+        if frame not in FRAMES:
+            raise ValueError(f"frame {frame!r} is not supported: one of {', '.join(FRAMES)}")
+        self.frame = frame
         self.activation_name = activation
         self.activation = ACTIVATIONS[activation]
         self.layers = [(np.asarray(w, np.float64), np.asarray(b, np.float64)) for w, b in layers]
@@ -79,11 +89,17 @@ class MLPPolicy(Policy):
             self.rng = np.random.default_rng(seed)
 
     def logits(self, observation: np.ndarray) -> np.ndarray:
-        hidden = np.asarray(observation, dtype=np.float64)
+        """The action logits for one observation (41,) or a batch (n, 41)."""
+        hidden = np.atleast_2d(np.asarray(observation, dtype=np.float64))
+        if self.frame == "opponent":
+            hidden, turned = face_opponent(hidden)
         for weight, bias in self.layers[:-1]:
             hidden = self.activation(hidden @ weight + bias)
         weight, bias = self.layers[-1]
-        return hidden @ weight + bias
+        logits = hidden @ weight + bias
+        if self.frame == "opponent":
+            logits = np.where(turned[:, None], logits[:, TURNED_ACTIONS], logits)
+        return logits[0] if np.ndim(observation) == 1 else logits
 
     def act(self, observation: np.ndarray) -> int:
         logits = self.logits(observation)
@@ -124,7 +140,7 @@ class FrozenPolicy(MLPPolicy):
     """An SB3 MLP actor copied into numpy: the same actions as `predict`, far less overhead.
 
     Self-play runs an opponent on every env step; SB3's `predict` spends most of its time outside
-    the network.
+    the network. A `FacingPolicy` model keeps its frame.
     """
 
     def __init__(self, model: Any, name: str = "frozen", deterministic: bool = True) -> None:
@@ -141,7 +157,7 @@ class FrozenPolicy(MLPPolicy):
         layers = [
             (m.weight.detach().cpu().numpy().T, m.bias.detach().cpu().numpy()) for m in linears
         ]
-        super().__init__(layers, activation, name, deterministic)
+        super().__init__(layers, activation, name, deterministic, getattr(policy, "frame", "seat"))
 
 
 def frozen_batch(model: Any, name: str, deterministic: bool, seed: int) -> BatchPolicy:
