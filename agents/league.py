@@ -15,7 +15,8 @@ joins the pool (the last `window` stay); every `exploiter_every` steps (0: never
 trains `exploiter_steps` steps against the frozen learner alone (`agents.league_exploiter`) and
 joins the pool (the last `exploiters` stay); with `exploiter_parallel` it trains in a second
 process while the learner goes on, starts from the last exploiter, and joins at the next mark. With
-`join_win_rate` the scripted fighters join one at a time, weak to strong. With `leagues` > 1, that
+`join_win_rate` the scripted fighters join one at a time, weak to strong; with `lead_reward` the
+learner is paid a little on every step it leads (agents.lead_reward). With `leagues` > 1, that
 many leagues train side by side, one process each, and the best final model is shipped
 (agents.league_population). Checkpoints, `--resume`, Ctrl-C and `OUT/final.zip` work as in
 agents.train; the learner's Elo, the pool's size and the PFSP win rates are logged (TensorBoard
@@ -56,6 +57,7 @@ from .checkpoints import (
     resume_state,
     start_fresh,
 )
+from .lead_reward import LeadReward
 from .league_exploiter import ExploiterJob, ExploiterWorker, train_exploiter
 from .league_pool import WEIGHTINGS, Pool, PoolOpponent
 from .league_population import LeagueFailed, league_folder, run_leagues, ship_best_league
@@ -100,6 +102,9 @@ class LeagueConfig:
     # games (even: half in each seat) against every scripted fighter and exploiter, sampled and
     # argmax, and the one with the best worst win rate is shipped (agents.league_select).
     select_games: int = 0
+    # Above 0: the learner gains this on every step it leads (more stocks, then more health) and
+    # loses it on every step it trails (agents.lead_reward; training only).
+    lead_reward: float = 0.0
 
     def __post_init__(self) -> None:
         for name in self.scripted:
@@ -136,6 +141,11 @@ class LeagueConfig:
             raise ConfigError(f"join_win_rate = {self.join_win_rate} is not allowed: in [0, 1]")
         if not 0.0 < self.floor <= 1.0:
             raise ConfigError(f"floor = {self.floor} is not allowed: in (0, 1]")
+        if not 0.0 <= self.lead_reward < 1.0:
+            raise ConfigError(
+                f"lead_reward = {self.lead_reward} is not allowed: in [0, 1) (0: none; "
+                "docs/league.md measured 0.005 a step)"
+            )
 
 
 @dataclass(frozen=True)
@@ -357,6 +367,8 @@ def build(config: LeagueRunConfig, folder: Path, state: dict[str, Any], resume: 
     envs: Any = FightVecEnv(
         config.fights, load_config(config.fight), opponent=opponent, seat="alternate"
     )
+    if config.league.lead_reward:
+        envs = LeadReward(envs, config.league.lead_reward)
     ppo = config.ppo
     if ppo.normalize_reward:
         envs = VecNormalize(envs, norm_obs=False, norm_reward=True, gamma=ppo.gamma)

@@ -217,6 +217,8 @@ def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
         load_league_config("smoke", league={"exploiter_parallel": True})
     with pytest.raises(ConfigError, match="exploiter_pool_play = 'best' is not allowed: one of"):
         load_league_config("smoke", league={"exploiter_pool_play": "best"})
+    with pytest.raises(ConfigError, match="lead_reward = -0.005 is not allowed: in \\[0, 1\\)"):
+        load_league_config("smoke", league={"lead_reward": -0.005})
     with pytest.raises(SystemExit) as stop:
         main(["--config", "smoke", "--out", str(tmp_path), "--resume"])
     assert stop.value.code == 2 and "no checkpoint" in capsys.readouterr().err

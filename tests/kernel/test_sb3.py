@@ -71,6 +71,22 @@ def test_same_seed_same_rollout_and_the_slots_are_the_batched_engines():
     assert np.array_equal(env.reset(), fights.reset(seed=3)[:, 1])
 
 
+@pytest.mark.parametrize("name", ["random", "rush"])
+def test_seed_alone_replays_a_named_opponent_that_draws_random_numbers(name):
+    """SB3 seeds a VecEnv with `seed()` only: the opponent's draws must follow it too."""
+
+    def rollout(seed):
+        env = FightVecEnv(4, opponent=name, max_cycles=60)
+        env.seed(seed)
+        trace = [env.reset()]
+        for _ in range(80):
+            trace.append(env.step(np.zeros(4, dtype=np.int64))[0])
+        return np.stack(trace)
+
+    assert np.array_equal(rollout(5), rollout(5))
+    assert not np.array_equal(rollout(5)[:, :, 19:], rollout(6)[:, :, 19:])
+
+
 def test_alternate_seats_put_fight_i_learner_in_seat_i_mod_2():
     env = FightVecEnv(4, opponent="idle", seat="alternate", max_cycles=20, info_events=True)
     env.seed(5)

@@ -16,13 +16,14 @@ images (H, W, 1) uint8 per slot (grayscale with a channel axis, or (H, W, 3)), t
 vectors, so against one only the learner's images are drawn (`VectorFight`'s `pixel_seats`).
 
 SB3's conventions: `reset()` returns the observations only; `seed(seed)` seeds fight i with
-`seed + i` at the next `reset()`; a fight that ends is reset at once, and its slots' infos carry
-`terminal_observation`, `TimeLimit.truncated` (True when the time ran out), `winner` ("win",
-"loss" or "draw", from the slot's side) and `episode` (`r` return, `l` length, `t` seconds since
-the env was made), as SB3's `Monitor` writes it, so PPO logs `ep_rew_mean` with no wrapper. With
-`info_events=True` every step's infos also carry the slot's `damage_dealt`, `damage_taken`,
-`hits_landed`, `hits_blocked`, `rung_out` and `knocked_out` (off by default: a dict per slot and
-step costs more than the fights do).
+`seed + i` at the next `reset()` (and a scripted opponent named without `opponent_seed` draws from
+`seed`, so the same seed and actions replay the same fights); a fight that ends is reset at once,
+and its slots' infos carry `terminal_observation`, `TimeLimit.truncated` (True when the time ran
+out), `winner` ("win", "loss" or "draw", from the slot's side) and `episode` (`r` return, `l`
+length, `t` seconds since the env was made), as SB3's `Monitor` writes it, so PPO logs `ep_rew_mean`
+with no wrapper. With `info_events=True` every step's infos also carry the slot's `damage_dealt`,
+`damage_taken`, `hits_landed`, `hits_blocked`, `rung_out` and `knocked_out` (off by default: a dict
+per slot and step costs more than the fights do).
 
 `render_mode="rgb_array"`: `render()` draws fight 0 (a `Spectator` replays it on the physics
 engine), so `VecVideoRecorder` works. `env_method("set_opponent", name)` swaps the opponent; the
@@ -91,6 +92,7 @@ class FightVecEnv(VecEnv):
         self.render_mode = render_mode
         self._spectator = Spectator(self.fights.config) if render_mode else None
         self.opponent = None if opponent is None else batch_opponent(opponent, opponent_seed)
+        self._opponent_follows_seed = isinstance(opponent, str) and opponent_seed is None
         self.seat = seat
         fights = np.arange(num_fights)
         self._rows = fights
@@ -127,10 +129,14 @@ class FightVecEnv(VecEnv):
         if self.self_play:
             raise ValueError("set_opponent: this FightVecEnv is self-play (opponent=None)")
         self.opponent = batch_opponent(opponent, seed)
+        self._opponent_follows_seed = isinstance(opponent, str) and seed is None
 
     def reset(self) -> np.ndarray:
-        if self._fight_seeds is not None or self._observations is None:
+        seeded = self._fight_seeds is not None
+        if seeded or self._observations is None:
             self.fights.seed(self._fight_seeds)  # None, the first time: from entropy
+        if seeded and self._opponent_follows_seed:
+            self.opponent.reset(self._fight_seeds[0])
         if self._spectator is not None:
             self._spectator.reset(self.fights.state.rng.get_state(0))
         everything = self.fights.reset()
