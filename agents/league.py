@@ -15,12 +15,13 @@ joins the pool (the last `window` stay); every `exploiter_every` steps (0: never
 trains `exploiter_steps` steps against the frozen learner alone (`agents.league_exploiter`) and
 joins the pool (the last `exploiters` stay); with `exploiter_parallel` it trains in a second
 process while the learner goes on, starts from the last exploiter, and joins at the next mark. With
-`join_win_rate` the scripted fighters join one at a time, weak to strong; with `lead_reward` the
-learner is paid a little on every step it leads (agents.lead_reward). With `leagues` > 1, that
-many leagues train side by side, one process each, and the best final model is shipped
-(agents.league_population). Checkpoints, `--resume`, Ctrl-C and `OUT/final.zip` work as in
-agents.train; the learner's Elo, the pool's size and the PFSP win rates are logged (TensorBoard
-when installed).
+`join_win_rate` the scripted fighters join one at a time, weak to strong; with `styles`, that many
+random-style opponents play from the start, each drawing a new style once the learner beats it
+(vooga_env.policies.random_styles); with `lead_reward` the learner is paid a little on every step
+it leads (agents.lead_reward). With `leagues` > 1, that many leagues train side by side, one
+process each, and the best final model is shipped (agents.league_population). Checkpoints,
+`--resume`, Ctrl-C and `OUT/final.zip` work as in agents.train; the learner's Elo, the pool's size
+and the PFSP win rates are logged (TensorBoard when installed).
 """
 
 from __future__ import annotations
@@ -44,6 +45,7 @@ from vooga_env.game.config import CONFIG_DIR, ConfigError, build_config, load_co
 from vooga_env.policies import SCRIPTED
 from vooga_env.policies.batched import VectorOpponent
 from vooga_env.policies.models import frozen_batch, load_model
+from vooga_env.policies.random_styles import RandomStyles
 from vooga_env.tools.files import atomic_write
 
 from . import common
@@ -105,6 +107,11 @@ class LeagueConfig:
     # Above 0: the learner gains this on every step it leads (more stocks, then more health) and
     # loses it on every step it trails (agents.lead_reward; training only).
     lead_reward: float = 0.0
+    # This many random-style opponents in the pool from the start (vooga_env.policies.
+    # random_styles); each draws a new style once the learner's score against it reaches
+    # `styles_redraw` over a full `results_window`.
+    styles: int = 0
+    styles_redraw: float = 0.9
 
     def __post_init__(self) -> None:
         for name in self.scripted:
@@ -141,6 +148,10 @@ class LeagueConfig:
             raise ConfigError(f"join_win_rate = {self.join_win_rate} is not allowed: in [0, 1]")
         if not 0.0 < self.floor <= 1.0:
             raise ConfigError(f"floor = {self.floor} is not allowed: in (0, 1]")
+        if self.styles < 0:
+            raise ConfigError(f"styles = {self.styles} is not allowed: >= 0 (0: none)")
+        if not 0.0 < self.styles_redraw <= 1.0:
+            raise ConfigError(f"styles_redraw = {self.styles_redraw} is not allowed: in (0, 1]")
         if not 0.0 <= self.lead_reward < 1.0:
             raise ConfigError(
                 f"lead_reward = {self.lead_reward} is not allowed: in [0, 1) (0: none; "
@@ -204,6 +215,15 @@ class LeagueCallback(BaseCallback):
         self.joined = 0
         for _ in range(state.get("scripted_joined", everyone)):
             self._join_scripted(results)
+        self.styles = {}
+        for index in range(self.league.styles):
+            name = f"styles_{index}"
+            # seeded apart from the scripted members (seed + 10 + i) and the other leagues
+            self.styles[name] = RandomStyles(config.seed * 1000 + 100 + index)
+            if name in state.get("styles", {}):
+                self.styles[name].load_state(state["styles"][name])
+            self.pool.add(name, self.styles[name], results.get(name))
+        self.styles_redrawn = state.get("styles_redrawn", 0)
         self.snapshots: list[str] = []
         self.exploiters: list[str] = []
         for kind in ("snapshots", "exploiters"):
@@ -249,6 +269,7 @@ class LeagueCallback(BaseCallback):
                 score = {"win": 1.0, "draw": 0.5, "loss": 0.0}[winner]
                 self.pool.record(self.opponent.assigned[slot], score)
             self.opponent.assigned[slot] = self.pool.draw(self.rng)
+        self._redraw_beaten_styles()
         if self._ready_for_next():
             self._join_scripted({})
         if self.num_timesteps - self.last_save >= self.league.save_steps:
@@ -259,9 +280,23 @@ class LeagueCallback(BaseCallback):
         self.logger.record("league/learner_elo", self.pool.ratings["learner"])
         self.logger.record("league/pool_size", len(self.pool.members))
         self.logger.record("league/scripted_joined", self.joined)
+        if self.styles:
+            self.logger.record("league/styles_redrawn", self.styles_redrawn)
         if self.worker is not None:
             self.logger.record("league/exploiter_wait_s", self.worker.waited)
         return True
+
+    def _redraw_beaten_styles(self) -> None:
+        """A random-style member the learner beats often enough plays a new style, its record
+        started again."""
+        for name, member in self.styles.items():
+            results = self.pool.results[name]
+            if len(results) == results.maxlen and self.pool.win_rate(name) >= (
+                self.league.styles_redraw
+            ):
+                member.redraw()
+                results.clear()
+                self.styles_redrawn += 1
 
     def _join(self, kind: str, name: str, results: list[float] | None = None) -> None:
         """Load a saved snapshot (sampling its actions) or exploiter (`exploiter_pool_play`)
@@ -352,6 +387,8 @@ class LeagueCallback(BaseCallback):
             "snapshots": list(self.snapshots),
             "exploiters": list(self.exploiters),
             "scripted_joined": self.joined,
+            "styles": {name: member.state() for name, member in self.styles.items()},
+            "styles_redrawn": self.styles_redrawn,
             "last_save": self.last_save,
             "last_exploiter": self.last_exploiter,
             "exploiters_made": self.exploiters_made,

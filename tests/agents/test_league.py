@@ -65,6 +65,7 @@ def test_a_smoke_league_pools_snapshots_and_exploiters_and_resumes(tmp_path):
     assert (tmp_path / "exploiters" / "exploiter_2048.zip").is_file()
     assert sum(len(state["results"][name]) for name in ("rush", "punisher")) > 0
     assert state["ratings"]["learner"] != 1200.0  # Elo moved with the games
+    assert set(state["styles"]) == {"styles_0"}  # the smoke's random-style opponent, kept
     final = train_league(load_league_config("smoke"), tmp_path, resume=True, progress=False)
     assert load_model(final).num_timesteps == 4096
     resumed = json.loads((tmp_path / "train_state.json").read_text())
@@ -105,7 +106,35 @@ def test_scripted_fighters_join_in_order_once_the_learner_beats_those_present(tm
     assert list(LeagueCallback(load_league_config("smoke"), tmp_path, {}).pool.members) == [
         "rush",
         "punisher",
+        "styles_0",
     ]  # join_win_rate = 0: all from the start
+
+
+def test_random_styles_play_from_the_start_and_draw_a_new_style_once_beaten(tmp_path):
+    config = load_league_config(
+        "smoke",
+        league={"scripted": ["rush"], "styles": 2, "results_window": 4, "styles_redraw": 0.75},
+    )
+    league = LeagueCallback(config, tmp_path, {})
+    assert list(league.pool.members) == ["rush", "styles_0", "styles_1"]
+    first, second = (league.styles[name].moves.copy() for name in ("styles_0", "styles_1"))
+    for score in (1.0, 1.0, 0.0):
+        league.pool.record("styles_0", score)
+    league._redraw_beaten_styles()
+    assert np.array_equal(league.styles["styles_0"].moves, first)  # the window is not full yet
+    league.pool.record("styles_0", 1.0)  # 3 of 4 = 0.75
+    for _ in range(4):
+        league.pool.record("styles_1", 0.5)
+    league._redraw_beaten_styles()
+    assert not np.array_equal(league.styles["styles_0"].moves, first)
+    assert len(league.pool.results["styles_0"]) == 0 and league.styles_redrawn == 1
+    assert np.array_equal(league.styles["styles_1"].moves, second)  # not beaten: kept
+    league.pool.record("styles_0", 0.0)
+    resumed = LeagueCallback(config, tmp_path, league.state())
+    for name in ("styles_0", "styles_1"):
+        assert resumed.styles[name].state() == league.styles[name].state()
+        assert list(resumed.pool.results[name]) == list(league.pool.results[name])
+    assert resumed.styles_redrawn == 1
 
 
 def test_the_same_seed_trains_the_same_league_and_init_starts_from_a_model(tmp_path):
@@ -217,6 +246,10 @@ def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
         load_league_config("smoke", league={"exploiter_parallel": True})
     with pytest.raises(ConfigError, match="exploiter_pool_play = 'best' is not allowed: one of"):
         load_league_config("smoke", league={"exploiter_pool_play": "best"})
+    with pytest.raises(ConfigError, match="styles = -1 is not allowed: >= 0"):
+        load_league_config("smoke", league={"styles": -1})
+    with pytest.raises(ConfigError, match="styles_redraw = 0.0 is not allowed: in \\(0, 1\\]"):
+        load_league_config("smoke", league={"styles_redraw": 0.0})
     with pytest.raises(ConfigError, match="lead_reward = -0.005 is not allowed: in \\[0, 1\\)"):
         load_league_config("smoke", league={"lead_reward": -0.005})
     with pytest.raises(SystemExit) as stop:

@@ -2,7 +2,8 @@
 
 `base.Policy` is the interface; `scripted` holds the scripted fighters, `models` the frozen
 trained ones (SB3 zips, exported MLPs), `batched` the scripted styles on N observations at once,
-and `spec.make_policy` turns a name, a file or a callable into a Policy.
+`random_styles` a batch opponent of random styles (the league's), and `spec.make_policy` turns a
+name, a file or a callable into a Policy.
 """
 
 from vooga_env.policies.base import Policy
