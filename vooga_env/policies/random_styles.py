@@ -1,6 +1,6 @@
 """A batch opponent that plays a random style, drawn again on request: the league's way to show
-its learner play that no scripted fighter and no past snapshot shows (docs/league.md, "Random
-styles").
+its learner play that no scripted fighter and no past snapshot shows (`[league] styles`;
+docs/league.md, "Random styles, and two other levers").
 
 Fresh exploiters beat the league's models with plain styles the pool never held: walking in and
 shoving, crouching under punches and kicking, jumping over and jabbing. A style here is, for each
