@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from vooga_env.game.actions import Action
-from vooga_env.policies.batched import _column, _reach, _recover
+from vooga_env.policies.batched import _away, _column, _jump_toward, _reach, _recover, _toward
 
 PHASES = 6  # styles a game: one for each sixth of the clock
 MOVES = 8  # forward, back, jump forward, jump back, jump, crouch, block, idle
@@ -77,13 +77,13 @@ class RandomStyles:
 def _moves(observations: np.ndarray) -> np.ndarray:
     """(MOVES, n): each move's action for each row, forward being toward the opponent."""
     count = len(observations)
-    right = _column(observations, "opponent_x") > 0
+    gap = _column(observations, "opponent_x")
     return np.stack(
         [
-            np.where(right, Action.RIGHT, Action.LEFT),
-            np.where(right, Action.LEFT, Action.RIGHT),
-            np.where(right, Action.JUMP_RIGHT, Action.JUMP_LEFT),
-            np.where(right, Action.JUMP_LEFT, Action.JUMP_RIGHT),
+            _toward(gap),
+            _away(gap),
+            _jump_toward(gap),
+            np.where(gap > 0, Action.JUMP_LEFT, Action.JUMP_RIGHT),
             np.full(count, Action.JUMP),
             np.full(count, Action.DOWN),
             np.full(count, Action.BLOCK),
