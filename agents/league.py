@@ -19,7 +19,8 @@ process while the learner goes on, starts from the last exploiter, and joins at 
 random-style opponents play from the start, each drawing a new style once the learner beats it
 (vooga_env.policies.random_styles); with `lead_reward` the learner is paid a little on every step
 it leads (agents.lead_reward). With `leagues` > 1, that many leagues train side by side, one
-process each, and the best final model is shipped (agents.league_population). Checkpoints,
+process each, and the best final model is shipped (agents.league_population), each first screened
+by a fresh exploiter with `screen_steps`. Checkpoints,
 `--resume`, Ctrl-C and `OUT/final.zip` work as in agents.train; the learner's Elo, the pool's size
 and the PFSP win rates are logged (TensorBoard when installed).
 """
@@ -62,7 +63,13 @@ from .checkpoints import (
 from .lead_reward import LeadReward
 from .league_exploiter import ExploiterJob, ExploiterWorker, train_exploiter
 from .league_pool import WEIGHTINGS, Pool, PoolOpponent
-from .league_population import LeagueFailed, league_folder, run_leagues, ship_best_league
+from .league_population import (
+    LeagueFailed,
+    league_folder,
+    run_leagues,
+    screen_leagues,
+    ship_best_league,
+)
 from .league_select import PLAYS, SELECTION_FILE, league_opponents, ship_best
 from .train import learn_and_save, load_init, policy_class, start_from
 from .train_config import PPOConfig
@@ -112,6 +119,10 @@ class LeagueConfig:
     # `styles_redraw` over a full `results_window`.
     styles: int = 0
     styles_redraw: float = 0.9
+    # Above 0, with `leagues` > 1: before the leagues' final models are compared, a fresh
+    # exploiter trains this many steps against each one's argmax (one process a league), and
+    # every final model meets every league's screen in the comparison (agents.league_population).
+    screen_steps: int = 0
 
     def __post_init__(self) -> None:
         for name in self.scripted:
@@ -150,6 +161,8 @@ class LeagueConfig:
             raise ConfigError(f"floor = {self.floor} is not allowed: in (0, 1]")
         if self.styles < 0:
             raise ConfigError(f"styles = {self.styles} is not allowed: >= 0 (0: none)")
+        if self.screen_steps < 0:
+            raise ConfigError(f"screen_steps = {self.screen_steps} is not allowed: >= 0 (0: none)")
         if not 0.0 < self.styles_redraw <= 1.0:
             raise ConfigError(f"styles_redraw = {self.styles_redraw} is not allowed: in (0, 1]")
         if not 0.0 <= self.lead_reward < 1.0:
@@ -185,6 +198,11 @@ class LeagueRunConfig:
             raise ConfigError(
                 f"leagues = {self.leagues} is not allowed with [league] select_games = 0: the "
                 "leagues' final models are compared over select_games games (set it > 0, e.g. 40)"
+            )
+        if self.league.screen_steps and self.leagues == 1:
+            raise ConfigError(
+                f"[league] screen_steps = {self.league.screen_steps} is not allowed with leagues = "
+                "1: the screens choose between leagues (set leagues >= 2, or screen_steps = 0)"
             )
 
 
@@ -487,13 +505,18 @@ def _train_leagues(
                 start_fresh(league, overwrite, config, "league_config.json")
         for stale in (folder / "final.zip", folder / SELECTION_FILE):
             stale.unlink(missing_ok=True)
+        one = replace(config, leagues=1, league=replace(config.league, screen_steps=0))
         runs = [
-            (replace(config, seed=config.seed + index, leagues=1), league, resume, False, minutes,
-             overwrite)
+            (replace(one, seed=config.seed + index), league, resume, False, minutes, overwrite)
             for index, league in enumerate(folders)
-        ]  # fmt: skip
+        ]
         run_leagues(train_league, runs, config.total_timesteps * config.leagues, progress)
         pool = config.league
+        if pool.screen_steps:
+            fights = max(config.fights // 2, 1)  # as the league's exploiters
+            screen_leagues(
+                folder, config.leagues, pool.screen_steps, config.fight, fights, config.seed
+            )
         with common.one_core():
             return ship_best_league(
                 folder,
@@ -503,6 +526,7 @@ def _train_leagues(
                 pool.select_games,
                 config.seed,
                 load_config(config.fight),
+                screened=bool(pool.screen_steps),
             )
 
 

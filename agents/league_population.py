@@ -7,6 +7,13 @@ each of two leagues. League i trains in OUT/league_i with seed + i, as agents.le
 at the end each final model plays fresh games against every scripted fighter and every league's
 exploiters, and the one with the best worst win rate becomes OUT/final.zip
 (agents.league_select).
+
+The leagues' final models all beat the scripted fighters on most seeds, and then the comparison
+cannot tell them apart; yet one of two was often beaten by every fresh exploiter within a minute
+while the other held for five (docs/league.md). With `screen_steps`, a fresh exploiter first trains
+against each final model (a screen, OUT/league_i/exploiters/screen.zip), and every final model
+meets every screen in the comparison: the one its own screen beats is not shipped over one that
+held.
 """
 
 from __future__ import annotations
@@ -19,10 +26,15 @@ from multiprocessing.connection import wait
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from . import common
 from .callbacks import stop_on_sigterm
 from .checkpoints import STATE_FILE
+from .league_exploiter import ExploiterJob, ExploiterWorker
 from .league_select import league_opponents, ship_best
+
+SCREEN = "screen"  # a league's screen: OUT/league_i/exploiters/screen.zip
 
 
 class LeagueFailed(RuntimeError):
@@ -103,6 +115,37 @@ def _steps(folder: Path) -> int:
         return 0
 
 
+def screen_leagues(
+    folder: Path, count: int, steps: int, fight: str, fights: int, seed: int
+) -> None:
+    """Train a fresh exploiter (`steps` steps, `fights` fights) against each of the `count`
+    leagues' final models playing its argmax, one process a league, each saved as the league's
+    screen; seeded from `seed` alone."""
+    seeds = np.random.default_rng([seed, 2]).integers(2**31, size=(count, 2))
+    workers = []
+    try:
+        for index, (target_seed, exploiter_seed) in enumerate(seeds):
+            league = league_folder(folder, index)
+            (league / "exploiters").mkdir(exist_ok=True)
+            job = ExploiterJob(
+                target=str(league / "final.zip"),
+                argmax=True,
+                target_seed=int(target_seed),
+                seed=int(exploiter_seed),
+                steps=steps,
+                fight=fight,
+                fights=fights,
+                out=str(league / "exploiters" / f"{SCREEN}.zip"),
+            )
+            workers.append(ExploiterWorker())
+            workers[-1].submit(job)
+        for worker in workers:
+            worker.collect()
+    finally:
+        for worker in workers:
+            worker.close()
+
+
 def ship_best_league(
     folder: Path,
     count: int,
@@ -111,15 +154,18 @@ def ship_best_league(
     games: int,
     seed: int,
     fight: Any,
+    screened: bool = False,
 ) -> Path:
     """Copy the best of the `count` leagues' final models to `folder/final.zip`: the one whose
     worst win rate over `games` games against the scripted fighters and every league's
-    exploiters (named league_i/exploiter_N) is best; `folder/selection.json` says why."""
+    exploiters (named league_i/exploiter_N, and league_i/screen when `screened`) is best;
+    `folder/selection.json` says why."""
     opponents = league_opponents(folder, scripted, [])
     candidates = {}
     for index in range(count):
         league = league_folder(folder, index)
         exploiters = json.loads((league / STATE_FILE).read_text())["exploiters"]
+        exploiters += [SCREEN] if screened else []
         opponents.update(league_opponents(league, [], exploiters, argmax, f"{league.name}/"))
         candidates[league.name] = league / "final.zip"
     return ship_best(folder, candidates, opponents, games, seed, fight)

@@ -25,10 +25,12 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def two_leagues(tmp_path: Path) -> Path:
-    """The smoke league, twice, with 4 games a pairing to choose the one shipped."""
+    """The smoke league, twice, with 4 games a pairing to choose the one shipped, each league's
+    final model first screened by a 512-step exploiter."""
     text = (CONFIG_DIR / "league" / "smoke.toml").read_text()
     path = tmp_path / "two.toml"
-    path.write_text(text.replace("fights = 8", "fights = 8\nleagues = 2") + "select_games = 4\n")
+    league = "select_games = 4\nscreen_steps = 512\n"  # [league] is the smoke's last table
+    path.write_text(text.replace("fights = 8", "fights = 8\nleagues = 2") + league)
     return path
 
 
@@ -62,7 +64,11 @@ def test_ctrl_c_stops_every_league_and_the_resumed_leagues_ship_the_best(tmp_pat
         for league in leagues
         for name in json.loads((league / "train_state.json").read_text())["exploiters"]
     }
-    assert len(exploiters) == 2 and opponents == {"rush", "punisher", *exploiters}
+    assert len(exploiters) == 2
+    screens = {f"{league.name}/screen" for league in leagues}
+    assert opponents == {"rush", "punisher", *exploiters, *screens}
+    for league in leagues:  # each screen trained against its league's final model
+        assert load_model(league / "exploiters" / "screen.zip").num_timesteps >= 512
 
 
 @contextmanager
@@ -117,3 +123,13 @@ def test_leagues_need_games_to_choose_between_them():
         load_league_config("smoke", leagues=2)
     with pytest.raises(ConfigError, match="leagues = 0 is not allowed: must be > 0"):
         load_league_config("smoke", leagues=0)
+
+
+def test_screens_need_leagues_to_choose_between(tmp_path):
+    path = tmp_path / "one.toml"
+    path.write_text((CONFIG_DIR / "league" / "smoke.toml").read_text() + "screen_steps = 512\n")
+    with pytest.raises(ConfigError, match="screen_steps = 512 is not allowed with leagues = 1"):
+        load_league_config(path)
+    path.write_text((CONFIG_DIR / "league" / "smoke.toml").read_text() + "screen_steps = -1\n")
+    with pytest.raises(ConfigError, match="screen_steps = -1 is not allowed: >= 0"):
+        load_league_config(path)
