@@ -205,6 +205,11 @@ class LeagueRunConfig:
                 "1: the screens choose between leagues (set leagues >= 2, or screen_steps = 0)"
             )
 
+    @property
+    def exploiter_fights(self) -> int:
+        """The batched fights an exploiter (or a screen) trains in: half the learner's."""
+        return max(self.fights // 2, 1)
+
 
 LEAGUE_DIR = CONFIG_DIR / "league"
 
@@ -389,7 +394,7 @@ class LeagueCallback(BaseCallback):
             seed=seed,
             steps=self.league.exploiter_steps,
             fight=self.config.fight,
-            fights=max(self.config.fights // 2, 1),
+            fights=self.config.exploiter_fights,
             out=str(folder / f"exploiter_{steps}.zip"),
             init=str(folder / init) if init else "",
         )
@@ -513,9 +518,13 @@ def _train_leagues(
         run_leagues(train_league, runs, config.total_timesteps * config.leagues, progress)
         pool = config.league
         if pool.screen_steps:
-            fights = max(config.fights // 2, 1)  # as the league's exploiters
             screen_leagues(
-                folder, config.leagues, pool.screen_steps, config.fight, fights, config.seed
+                folder,
+                config.leagues,
+                pool.screen_steps,
+                config.fight,
+                config.exploiter_fights,
+                config.seed,
             )
         with common.one_core():
             return ship_best_league(
