@@ -201,6 +201,21 @@ CASES = [
         "arena.spawns[0]",
     ),
     (
+        # the fighter's right edge lands on the block's left edge after rounding: both backends
+        # find no block under it (formulas.under), so the check must not either
+        "spawn-touching-a-block-by-rounding",
+        config(
+            arena={
+                "spawns": [59.343399059355946, 520.0],
+                "spawn_jitter": 0.0,
+                "blocks": [{"x": 73.6956812327744, "y": 360.0, "width": 620.0, "height": 40.0}],
+            },
+            fighter={"width": 14.352282173418466},
+        ),
+        C,
+        "arena.spawns[0]",
+    ),
+    (
         "spawn-jitter-past-edge",
         arena(spawns=[240.0, 620.0], spawn_jitter=70.0),
         C,

@@ -434,14 +434,15 @@ def _check_spawn(config: FightConfig, source: str, key: str, x: float) -> None:
     jitter = f" (spawn_jitter {arena.spawn_jitter:g}: {low:g}..{high:g})" if low < high else ""
     if low < margin or high + fighter.width > arena.width - margin:
         _fail(source, key, x, f"the fighter{jitter} must spawn inside the arena's bounds")
-    # a block is under a left edge at s when s lies in (block.x - width, block.x + block.width)
+    # a block is under a left edge at s when block.x < s + width and s < block.x + block.width,
+    # written as formulas.under writes it (block.x - width < s can round the other way)
     under = sorted(
-        (block for block in arena.blocks if block.x - fighter.width < high and low < block.right),
+        (block for block in arena.blocks if block.x < high + fighter.width and low < block.right),
         key=lambda block: block.x,
     )
     point = low  # the first left edge not yet known to be covered
     for block in under:
-        if block.x - fighter.width >= point:
+        if block.x >= point + fighter.width:
             break
         point = max(point, block.right)
     if point <= high:
