@@ -109,7 +109,8 @@ class LeagueConfig:
     join_win_rate: float = 0.0
     # Above 0: at the end, the last `window` snapshots and the final model each play this many
     # games (even: half in each seat) against every scripted fighter and exploiter, sampled and
-    # argmax, and the one with the best worst win rate is shipped (agents.league_select).
+    # argmax, and the one with the best worst score (won against a scripted fighter, not lost
+    # against an exploiter) is shipped (agents.league_select).
     select_games: int = 0
     # Above 0: the learner gains this on every step it leads (more stocks, then more health) and
     # loses it on every step it trails (agents.lead_reward; training only).
@@ -584,7 +585,7 @@ def select(
     candidates = {f"{name}.zip": folder / "snapshots" / f"{name}.zip" for name in snapshots}
     candidates["final.zip"] = final
     fight = load_config(config.fight)
-    return ship_best(folder, candidates, opponents, games, config.seed, fight)
+    return ship_best(folder, candidates, opponents, games, config.seed, fight, exploiters)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -648,7 +649,8 @@ def format_pool(state: dict[str, Any]) -> str:
 
 
 def format_selection(selection: dict[str, Any]) -> str:
-    """Each candidate's worst and mean win rate over the selection's games, and the one shipped."""
+    """Each candidate's worst and mean score over the selection's games (won against a scripted
+    fighter, not lost against an exploiter), and the one shipped."""
     rows = [
         (name, 100.0 * row["worst"], 100.0 * row["mean"])
         for name, row in selection["candidates"].items()
@@ -657,7 +659,7 @@ def format_selection(selection: dict[str, Any]) -> str:
         [
             f"shipped {selection['chosen']} as final.zip ({selection['games']} games against each"
             " scripted fighter and exploiter, sampled and argmax)",
-            common.table(("candidate", "worst win %", "mean win %"), rows),
+            common.table(("candidate", "worst score %", "mean score %"), rows),
         ]
     )
 

@@ -5,15 +5,15 @@ What a league makes swings with its seed: the same config beat every scripted fi
 on some seeds and never beat turtle on others (docs/league.md), and this machine has a core for
 each of two leagues. League i trains in OUT/league_i with seed + i, as agents.league trains one;
 at the end each final model plays fresh games against every scripted fighter and every league's
-exploiters, and the one with the best worst win rate becomes OUT/final.zip
-(agents.league_select).
+exploiters, and the one with the best worst score (games won against a scripted fighter, not
+lost against an exploiter) becomes OUT/final.zip (agents.league_select).
 
 The leagues' final models all beat the scripted fighters on most seeds, and then the comparison
 cannot tell them apart; yet one of two was often beaten by every fresh exploiter within a minute
 while the other held for five (docs/league.md). With `screen_steps`, a fresh exploiter first trains
 against each final model (a screen, OUT/league_i/exploiters/screen.zip), and every final model
 meets every screen in the comparison: the one its own screen beats is not shipped over one that
-held.
+held (a screen that only draws has not beaten it).
 """
 
 from __future__ import annotations
@@ -157,9 +157,9 @@ def ship_best_league(
     screened: bool = False,
 ) -> Path:
     """Copy the best of the `count` leagues' final models to `folder/final.zip`: the one whose
-    worst win rate over `games` games against the scripted fighters and every league's
-    exploiters (named league_i/exploiter_N, and league_i/screen when `screened`) is best;
-    `folder/selection.json` says why."""
+    worst score over `games` games against the scripted fighters (won) and every league's
+    exploiters (not lost; named league_i/exploiter_N, and league_i/screen when `screened`) is
+    best; `folder/selection.json` says why."""
     opponents = league_opponents(folder, scripted, [])
     candidates = {}
     for index in range(count):
@@ -168,4 +168,5 @@ def ship_best_league(
         exploiters += [SCREEN] if screened else []
         opponents.update(league_opponents(league, [], exploiters, argmax, f"{league.name}/"))
         candidates[league.name] = league / "final.zip"
-    return ship_best(folder, candidates, opponents, games, seed, fight)
+    learned = set(opponents) - set(scripted)  # the exploiters and the screens
+    return ship_best(folder, candidates, opponents, games, seed, fight, learned)

@@ -1,7 +1,9 @@
 """Which model a league ships: its last snapshots and its final model each play fresh games
 against every scripted fighter and exploiter of the league, sampling and taking the argmax, and
-the one whose worst win rate is highest becomes `final.zip` (ties: the better mean, then the
-newer).
+the one whose worst score is highest becomes `final.zip` (ties: the better mean, then the
+newer). The score against a scripted fighter is the share of games won; against an exploiter,
+the share not lost: issue 12 asks for wins over the scripted fighters and for exploiters that
+win under half their games, and a draw with an exploiter is not its win.
 
 A league's policy swings by tens of points from one 1M checkpoint to the next, and the pool's
 windows of recent games lag the swings (docs/league.md), so the model the clock stops on is a
@@ -13,6 +15,7 @@ from __future__ import annotations
 
 import json
 import shutil
+from collections.abc import Collection
 from pathlib import Path
 from typing import Any
 
@@ -30,11 +33,17 @@ SELECTION_FILE = "selection.json"
 
 
 def scores(
-    network: Any, opponents: dict[str, Any], games: int, seed: int, fight: Any = "default"
+    network: Any,
+    opponents: dict[str, Any],
+    games: int,
+    seed: int,
+    fight: Any = "default",
+    exploiters: Collection[str] = (),
 ) -> dict[str, Any]:
-    """play -> opponent -> the network's win rate over `games` games against it (half in each
-    seat) in `fight`, every opponent in one batch. `opponents`: name -> a function of a seed
-    giving a fresh batch player, so that every candidate meets the same players."""
+    """play -> opponent -> the network's score over `games` games against it (half in each
+    seat) in `fight`, every opponent in one batch: the share won, or against the `exploiters`
+    the share not lost. `opponents`: name -> a function of a seed giving a fresh batch player,
+    so that every candidate meets the same players."""
     names = list(opponents)
     fights = games * len(names)
     rates: dict[str, Any] = {}
@@ -45,11 +54,16 @@ def scores(
         mixed = PoolOpponent(pool, fights)
         mixed.assigned = [names[fight % len(names)] for fight in range(fights)]
         candidate = frozen_batch(network, "candidate", deterministic, seed)
-        won = np.array(batch_outcomes(candidate, mixed, fights, seed, fight)) == "win"
+        outcomes = np.array(batch_outcomes(candidate, mixed, fights, seed, fight))
         rates[play] = {
-            name: float(won[offset :: len(names)].mean()) for offset, name in enumerate(names)
+            name: float(_scored(outcomes[offset :: len(names)], name in exploiters).mean())
+            for offset, name in enumerate(names)
         }
     return rates
+
+
+def _scored(outcomes: np.ndarray, exploiter: bool) -> np.ndarray:
+    return outcomes != "loss" if exploiter else outcomes == "win"
 
 
 def league_opponents(
@@ -79,14 +93,16 @@ def ship_best(
     games: int,
     seed: int,
     fight: Any = "default",
+    exploiters: Collection[str] = (),
 ) -> Path:
-    """Score each candidate (by name, oldest first), copy the best to `folder/final.zip`, and
-    write every score to `folder/selection.json`; returns final.zip's path."""
+    """Score each candidate (by name, oldest first; `exploiters` names the opponents scored by
+    the games not lost), copy the best to `folder/final.zip`, and write every score to
+    `folder/selection.json`; returns final.zip's path."""
     table = {}
     for name, path in candidates.items():
-        rates = scores(load_model(path), opponents, games, seed, fight)
+        rates = scores(load_model(path), opponents, games, seed, fight, exploiters)
         every = [rate for play in rates.values() for rate in play.values()]
-        table[name] = {"worst": min(every), "mean": float(np.mean(every)), "win_rates": rates}
+        table[name] = {"worst": min(every), "mean": float(np.mean(every)), "scores": rates}
     names = list(table)
     chosen = max(
         names, key=lambda name: (table[name]["worst"], table[name]["mean"], names.index(name))
@@ -94,6 +110,11 @@ def ship_best(
     final = folder / "final.zip"
     if candidates[chosen] != final:
         atomic_write(final, lambda temporary: shutil.copyfile(candidates[chosen], temporary))
-    report = {"chosen": chosen, "games": games, "candidates": table}
+    report = {
+        "chosen": chosen,
+        "games": games,
+        "exploiters": sorted(exploiters),
+        "candidates": table,
+    }
     atomic_write_text(folder / SELECTION_FILE, json.dumps(report, indent=2))
     return final

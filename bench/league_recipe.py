@@ -103,7 +103,7 @@ def report(result: dict[str, Any]) -> str:
     if "selection" in result:
         chosen = result["selection"]["chosen"]
         worst = result["selection"]["candidates"][chosen]["worst"]
-        lines.append(f"shipped {chosen}: worst win {100 * worst:.0f}% over the selection's games")
+        lines.append(f"shipped {chosen}: worst score {100 * worst:.0f}% over the selection's games")
     lines.append(f"{result['model']}: win % against each scripted fighter (95% CI)")
     for play, rates in result["win_rates"].items():
         cells = [

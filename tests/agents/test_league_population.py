@@ -58,7 +58,7 @@ def test_ctrl_c_stops_every_league_and_the_resumed_leagues_ship_the_best(tmp_pat
     assert final.read_bytes() == (out / selection["chosen"] / "final.zip").read_bytes()
     rows = selection["candidates"].values()
     assert selection["candidates"][selection["chosen"]]["worst"] == max(r["worst"] for r in rows)
-    opponents = set(selection["candidates"]["league_0"]["win_rates"]["argmax"])
+    opponents = set(selection["candidates"]["league_0"]["scores"]["argmax"])
     exploiters = {
         f"{league.name}/{name}"
         for league in leagues
@@ -67,6 +67,7 @@ def test_ctrl_c_stops_every_league_and_the_resumed_leagues_ship_the_best(tmp_pat
     assert len(exploiters) == 2
     screens = {f"{league.name}/screen" for league in leagues}
     assert opponents == {"rush", "punisher", *exploiters, *screens}
+    assert set(selection["exploiters"]) == {*exploiters, *screens}  # scored by games not lost
     for league in leagues:  # each screen trained against its league's final model
         assert load_model(league / "exploiters" / "screen.zip").num_timesteps >= 512
 

@@ -1,4 +1,5 @@
-"""The league ships the candidate whose worst win rate is best, measured on fresh games."""
+"""The league ships the candidate whose worst score (games won against a scripted fighter, not
+lost against an exploiter) is best, measured on fresh games."""
 
 from __future__ import annotations
 
@@ -40,6 +41,17 @@ def test_the_walker_beats_idle_and_the_stander_does_not_in_one_mixed_batch(tmp_p
         assert set(walker[play]) == {"idle", "rush"}
 
 
+def test_a_draw_fails_against_a_scripted_fighter_and_holds_against_an_exploiter(tmp_path):
+    opponents = league_opponents(tmp_path, ["idle"], [])
+    stander = load_model(_always(Action.IDLE, tmp_path / "s.zip"))
+    retreater = load_model(_always(Action.LEFT, tmp_path / "r.zip"))
+    for play in ("sampled", "argmax"):  # two fighters standing still: a draw
+        assert scores(stander, opponents, 4, 0)[play]["idle"] == 0.0
+        assert scores(stander, opponents, 4, 0, exploiters={"idle"})[play]["idle"] == 1.0
+        # walking off its own edge is a loss either way
+        assert scores(retreater, opponents, 4, 0, exploiters={"idle"})[play]["idle"] == 0.0
+
+
 def test_the_best_worst_win_rate_is_shipped_even_when_older(tmp_path):
     walker = _always(Action.RIGHT, tmp_path / "walker.zip")
     stander = _always(Action.IDLE, tmp_path / "stander.zip")
@@ -65,7 +77,7 @@ def test_a_league_with_select_games_ships_its_best_candidate_repeatably(tmp_path
     names = [f"{name}.zip" for name in state["snapshots"]] + ["final.zip"]
     assert list(selection["candidates"]) == names
     for row in selection["candidates"].values():
-        for rates in row["win_rates"].values():
+        for rates in row["scores"].values():
             assert set(rates) == {"rush", "punisher", *state["exploiters"]}
     rows = list(selection["candidates"].values())
     best = max(
@@ -76,8 +88,10 @@ def test_a_league_with_select_games_ships_its_best_candidate_repeatably(tmp_path
         chosen = run / "snapshots" / names[best]
         assert final.read_bytes() == chosen.read_bytes()
     opponents = league_opponents(run, ["rush", "punisher"], state["exploiters"])
-    again = scores(load_model(final), opponents, 4, config.seed, load_config(config.fight))
-    assert again == selection["candidates"][selection["chosen"]]["win_rates"]  # the same games
+    assert selection["exploiters"] == sorted(state["exploiters"])
+    fight = load_config(config.fight)
+    again = scores(load_model(final), opponents, 4, config.seed, fight, state["exploiters"])
+    assert again == selection["candidates"][selection["chosen"]]["scores"]  # the same games
     for argmax in (False, True):  # exploiters play as `exploiter_pool_play` has them play
         players = league_opponents(run, [], state["exploiters"], argmax, "league_0/")
         assert list(players) == [f"league_0/{name}" for name in state["exploiters"]]
