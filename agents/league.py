@@ -20,9 +20,9 @@ random-style opponents play from the start, each drawing a new style once the le
 (vooga_env.policies.random_styles); with `lead_reward` the learner is paid a little on every step
 it leads (agents.lead_reward). With `leagues` > 1, that many leagues train side by side, one
 process each, and the best final model is shipped (agents.league_population), each first screened
-by a fresh exploiter with `screen_steps`. Checkpoints,
-`--resume`, Ctrl-C and `OUT/final.zip` work as in agents.train; the learner's Elo, the pool's size
-and the PFSP win rates are logged (TensorBoard when installed).
+by a fresh exploiter with `screen_steps`. Checkpoints, `--resume`, Ctrl-C and `OUT/final.zip` work
+as in agents.train; the learner's Elo, the pool's size and the PFSP win rates are logged
+(TensorBoard when installed).
 """
 
 from __future__ import annotations
