@@ -11,18 +11,18 @@ sits in seat i % 2 of fight i of `fights` batched fights (`FightVecEnv`, `seat="
 seats in every rollout, whatever the engine does in seat order); fight i's opponent is
 `PoolOpponent.assigned[i]`, drawn again from the pool at the end of each game
 (`agents.league_pool`: harder opponents more often). Every `save_steps` a snapshot of the learner
-joins the pool (the last `window` stay); every `exploiter_every` steps (0: never) a fresh learner
+joins the pool (the last `window` stay); every `exploiter_every` steps (0: never) an exploiter
 trains `exploiter_steps` steps against the frozen learner alone (`agents.league_exploiter`) and
-joins the pool (the last `exploiters` stay); with `exploiter_parallel` it trains in a second
-process while the learner goes on, starts from the last exploiter, and joins at the next mark. With
-`join_win_rate` the scripted fighters join one at a time, weak to strong; with `styles`, that many
-random-style opponents play from the start, each drawing a new style once the learner beats it
-(vooga_env.policies.random_styles); with `lead_reward` the learner is paid a little on every step
-it leads (agents.lead_reward). With `leagues` > 1, that many leagues train side by side, one
-process each, and the best final model is shipped (agents.league_population), each first screened
-by a fresh exploiter with `screen_steps`. Checkpoints, `--resume`, Ctrl-C and `OUT/final.zip` work
-as in agents.train; the learner's Elo, the pool's size and the PFSP win rates are logged
-(TensorBoard when installed).
+joins the pool (the last `exploiters` stay), starting from a new network, the last exploiter or the
+learner (`exploiter_start`); with `exploiter_parallel` it trains in a second process while the
+learner goes on, and joins at the next mark. With `join_win_rate` the scripted fighters join one at
+a time, weak to strong; with `styles`, that many random-style opponents play from the start, each
+drawing a new style once the learner beats it (vooga_env.policies.random_styles); with
+`lead_reward` the learner is paid a little on every step it leads (agents.lead_reward). With
+`leagues` > 1, that many leagues train side by side, one process each, and the best final model is
+shipped (agents.league_population), each first screened by a fresh exploiter with `screen_steps`.
+Checkpoints, `--resume`, Ctrl-C and `OUT/final.zip` work as in agents.train; the learner's Elo, the
+pool's size and the PFSP win rates are logged (TensorBoard when installed).
 """
 
 from __future__ import annotations
@@ -75,6 +75,7 @@ from .train import learn_and_save, load_init, policy_class, start_from
 from .train_config import PPOConfig
 
 EXPLOITER_PLAYS = ("sampled", "argmax", "alternate")
+EXPLOITER_STARTS = ("new", "last", "learner")
 
 
 @dataclass(frozen=True)
@@ -93,13 +94,14 @@ class LeagueConfig:
     # How the frozen learner plays while an exploiter trains against it: "argmax", "sampled" (as
     # it plays in training), or "alternate" (argmax first, then turn about).
     exploiter_play: str = "argmax"
-    # Train each exploiter in a second process (the other core) while the learner trains on,
-    # starting from the last exploiter; it joins the pool at the next mark.
+    # Train each exploiter in a second process (the other core) while the learner trains on; it
+    # joins the pool at the next mark.
     exploiter_parallel: bool = False
-    # Start each exploiter from the learner's weights as they are at its mark (it fights as well
-    # as the learner from its first step, and looks for the learner's holes from there), not
-    # from a new network (or, in parallel, the last exploiter).
-    exploiter_from_learner: bool = False
+    # What each exploiter starts from: "new" (a new network, which looks for the learner's holes
+    # afresh), "last" (the last exploiter: a line that has trained all the league long against
+    # the learner's past selves) or "learner" (the learner's weights at its mark: it fights as
+    # well as the learner from its first step).
+    exploiter_start: str = "new"
     # How exploiters play once in the pool: "sampled" (as snapshots do) or "argmax" (as a
     # measuring exploiter is judged).
     exploiter_pool_play: str = "sampled"
@@ -150,6 +152,11 @@ class LeagueConfig:
             raise ConfigError(
                 f"exploiter_play = {self.exploiter_play!r} is not allowed: one of "
                 f"{list(EXPLOITER_PLAYS)}"
+            )
+        if self.exploiter_start not in EXPLOITER_STARTS:
+            raise ConfigError(
+                f"exploiter_start = {self.exploiter_start!r} is not allowed: one of "
+                f"{list(EXPLOITER_STARTS)}"
             )
         if self.exploiter_pool_play not in PLAYS:
             raise ConfigError(
@@ -361,19 +368,15 @@ class LeagueCallback(BaseCallback):
 
     def _exploiter(self) -> None:
         """Pool an exploiter trained against the learner as it is now; in parallel, pool the one
-        trained since the last mark and start the next from it (or, `exploiter_from_learner`,
-        from the learner)."""
+        trained since the last mark and start the next."""
         if self.worker is not None and self.pending is not None:
             self.worker.collect()
             self._join("exploiters", f"exploiter_{self.pending['steps']}")
         steps = self.num_timesteps
         (self.folder / "exploiters").mkdir(parents=True, exist_ok=True)
         atomic_write(self.folder / "exploiters" / f"target_{steps}.zip", self.model.save)
-        start = f"{self.exploiters[-1]}.zip" if self.worker is not None and self.exploiters else ""
-        if self.league.exploiter_from_learner:
-            start = f"target_{steps}.zip"  # the learner as it is now
         target_seed, seed = (int(self.rng.integers(2**31)) for _ in range(2))
-        args = {"steps": steps, "argmax": self.exploiter_argmax(), "init": start}
+        args = {"steps": steps, "argmax": self.exploiter_argmax(), "init": self._start(steps)}
         job = self._job(**args, target_seed=target_seed, seed=seed)
         if self.worker is None:
             self._join("exploiters", Path(train_exploiter(job)).stem)
@@ -382,6 +385,14 @@ class LeagueCallback(BaseCallback):
             self.pending = {**args, "target_seed": target_seed, "seed": seed}
         self.last_exploiter = steps
         self.exploiters_made += 1
+
+    def _start(self, steps: int) -> str:
+        """The file (in OUT/exploiters) the exploiter made at `steps` starts from; "": a new
+        network."""
+        start = self.league.exploiter_start
+        if start == "learner":
+            return f"target_{steps}.zip"  # the learner as it is now
+        return f"{self.exploiters[-1]}.zip" if start == "last" and self.exploiters else ""
 
     def _job(
         self, steps: int, argmax: bool, target_seed: int, seed: int, init: str

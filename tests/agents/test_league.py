@@ -155,14 +155,14 @@ def test_the_same_seed_trains_the_same_league_and_init_starts_from_a_model(tmp_p
         train_league(load_league_config("smoke", init="nowhere.zip"), tmp_path / "d")
 
 
-@pytest.mark.parametrize("from_learner", [True, False])
-def test_exploiters_start_from_the_learner_when_asked(tmp_path, from_learner):
-    """With `exploiter_from_learner` the exploiter trained 512 steps from the learner saved at
-    its mark, so its weights are far closer to the learner's than a new network's are; without
-    it, they are not (the new network's seed is not the league's, 0, whose first weights the
-    learner has barely left)."""
+@pytest.mark.parametrize("start", ["learner", "new"])
+def test_exploiters_start_from_the_learner_when_asked(tmp_path, start):
+    """With `exploiter_start = "learner"` the exploiter trained 512 steps from the learner saved
+    at its mark, so its weights are far closer to the learner's than a new network's are; from a
+    new network, they are not (its seed is not the league's, 0, whose first weights the learner
+    has barely left)."""
     config = load_league_config("smoke", total_timesteps=2048)
-    league = replace(config.league, exploiter_from_learner=from_learner)
+    league = replace(config.league, exploiter_start=start)
     train_league(replace(config, league=league), tmp_path, progress=False)
     folder = tmp_path / "exploiters"
     learner, exploiter = (
@@ -171,7 +171,7 @@ def test_exploiters_start_from_the_learner_when_asked(tmp_path, from_learner):
     fresh = make_learner(FightVecEnv(2, load_config("small"), opponent="idle"), seed=1)
     layers = zip(*(m.policy.parameters() for m in (learner, exploiter, fresh)), strict=True)
     moved, apart = zip(*[((e - t).abs().mean(), (f - t).abs().mean()) for t, e, f in layers])
-    assert (sum(moved) < sum(apart) / 10) == from_learner, (sum(moved), sum(apart))
+    assert (sum(moved) < sum(apart) / 10) == (start == "learner"), (sum(moved), sum(apart))
 
 
 def parallel_config(tmp_path, total: int):
@@ -180,7 +180,7 @@ def parallel_config(tmp_path, total: int):
     text = (CONFIG_DIR / "league" / "smoke.toml").read_text()
     text = text.replace("exploiter_every = 2048", "exploiter_every = 1024")
     text = text.replace("exploiters = 1", "exploiters = 2")
-    path.write_text(text + "exploiter_parallel = true\n")
+    path.write_text(text + 'exploiter_parallel = true\nexploiter_start = "last"\n')
     return load_league_config(path, total_timesteps=total)
 
 
@@ -206,6 +206,10 @@ def test_parallel_exploiters_continue_from_the_last_and_a_resume_trains_them_aga
         members = LeagueCallback(replace(config, league=league), tmp_path, state).pool.members
         assert [members[name].policy.deterministic for name in state["exploiters"]] == [argmax] * 2
         assert not members["snapshot_3072"].policy.deterministic  # snapshots always sample
+    starts = {"last": "exploiter_2048.zip", "new": "", "learner": "target_4096.zip"}
+    for start, init in starts.items():  # what the next exploiter (at 4096) would start from
+        league = replace(config.league, exploiter_start=start)
+        assert LeagueCallback(replace(config, league=league), tmp_path, state)._start(4096) == init
 
 
 def test_a_failed_exploiter_process_is_an_error_that_names_it(tmp_path):
@@ -244,6 +248,8 @@ def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
         load_league_config("smoke", league={"exploiter_play": "best"})
     with pytest.raises(ConfigError, match="exploiter_parallel = true is not allowed with"):
         load_league_config("smoke", league={"exploiter_parallel": True})
+    with pytest.raises(ConfigError, match="exploiter_start = 'old' is not allowed: one of"):
+        load_league_config("smoke", league={"exploiter_start": "old"})
     with pytest.raises(ConfigError, match="exploiter_pool_play = 'best' is not allowed: one of"):
         load_league_config("smoke", league={"exploiter_pool_play": "best"})
     with pytest.raises(ConfigError, match="styles = -1 is not allowed: >= 0"):
