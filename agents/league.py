@@ -131,8 +131,17 @@ class LeagueConfig:
         for name in self.scripted:
             if name not in SCRIPTED:
                 raise ConfigError(f"scripted = {name!r} is not allowed: one of {list(SCRIPTED)}")
-        if self.pfsp not in WEIGHTINGS:
-            raise ConfigError(f"pfsp = {self.pfsp!r} is not allowed: one of {list(WEIGHTINGS)}")
+        choices = {
+            "pfsp": WEIGHTINGS,
+            "exploiter_play": EXPLOITER_PLAYS,
+            "exploiter_start": EXPLOITER_STARTS,
+            "exploiter_pool_play": tuple(PLAYS),
+        }
+        for key, allowed in choices.items():
+            if getattr(self, key) not in allowed:
+                raise ConfigError(
+                    f"{key} = {getattr(self, key)!r} is not allowed: one of {list(allowed)}"
+                )
         for key in ("save_steps", "window", "results_window", "exploiter_steps", "exploiters"):
             if getattr(self, key) <= 0:
                 raise ConfigError(f"{key} = {getattr(self, key)} is not allowed: must be > 0")
@@ -147,21 +156,6 @@ class LeagueConfig:
             raise ConfigError(
                 "exploiter_parallel = true is not allowed with exploiter_every = 0: set "
                 "exploiter_every > 0, or exploiter_parallel = false"
-            )
-        if self.exploiter_play not in EXPLOITER_PLAYS:
-            raise ConfigError(
-                f"exploiter_play = {self.exploiter_play!r} is not allowed: one of "
-                f"{list(EXPLOITER_PLAYS)}"
-            )
-        if self.exploiter_start not in EXPLOITER_STARTS:
-            raise ConfigError(
-                f"exploiter_start = {self.exploiter_start!r} is not allowed: one of "
-                f"{list(EXPLOITER_STARTS)}"
-            )
-        if self.exploiter_pool_play not in PLAYS:
-            raise ConfigError(
-                f"exploiter_pool_play = {self.exploiter_pool_play!r} is not allowed: one of "
-                f"{list(PLAYS)}"
             )
         if not 0.0 <= self.join_win_rate <= 1.0:
             raise ConfigError(f"join_win_rate = {self.join_win_rate} is not allowed: in [0, 1]")
