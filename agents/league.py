@@ -257,6 +257,8 @@ class LeagueCallback(BaseCallback):
         self.last_save = state.get("last_save", 0)
         self.last_exploiter = state.get("last_exploiter", 0)
         self.exploiters_made = state.get("exploiters_made", 0)
+        # each pooled exploiter's best share won against the learner it trained on
+        self.exploiter_win_rates: dict[str, float] = state.get("exploiter_win_rates", {})
         self.opponent: PoolOpponent | None = None
         self.worker = ExploiterWorker() if self.league.exploiter_parallel else None
         # the parallel exploiter training now, as `_job`'s arguments (resubmitted on resume)
@@ -309,6 +311,9 @@ class LeagueCallback(BaseCallback):
             self.logger.record("league/styles_redrawn", self.styles_redrawn)
         if self.worker is not None:
             self.logger.record("league/exploiter_wait_s", self.worker.waited)
+        if self.exploiter_win_rates:
+            latest = list(self.exploiter_win_rates.values())[-1]
+            self.logger.record("league/exploiter_win_rate", latest)
         return True
 
     def _redraw_beaten_styles(self) -> None:
@@ -365,7 +370,7 @@ class LeagueCallback(BaseCallback):
         trained since the last mark and start the next."""
         if self.worker is not None and self.pending is not None:
             self.worker.collect()
-            self._join("exploiters", f"exploiter_{self.pending['steps']}")
+            self._pool_exploiter(f"exploiter_{self.pending['steps']}")
         steps = self.num_timesteps
         (self.folder / "exploiters").mkdir(parents=True, exist_ok=True)
         atomic_write(self.folder / "exploiters" / f"target_{steps}.zip", self.model.save)
@@ -373,12 +378,18 @@ class LeagueCallback(BaseCallback):
         args = {"steps": steps, "argmax": self.exploiter_argmax(), "init": self._start(steps)}
         job = self._job(**args, target_seed=target_seed, seed=seed)
         if self.worker is None:
-            self._join("exploiters", Path(train_exploiter(job)).stem)
+            self._pool_exploiter(Path(train_exploiter(job)).stem)
         else:
             self.worker.submit(job)
             self.pending = {**args, "target_seed": target_seed, "seed": seed}
         self.last_exploiter = steps
         self.exploiters_made += 1
+
+    def _pool_exploiter(self, name: str) -> None:
+        """Add a trained exploiter to the pool and keep its score against its own target."""
+        self._join("exploiters", name)
+        result = json.loads((self.folder / "exploiters" / f"{name}.json").read_text())
+        self.exploiter_win_rates[name] = result["best_win_rate"]
 
     def _start(self, steps: int) -> str:
         """The file (in OUT/exploiters) the exploiter made at `steps` starts from; "": a new
@@ -421,6 +432,7 @@ class LeagueCallback(BaseCallback):
             "last_save": self.last_save,
             "last_exploiter": self.last_exploiter,
             "exploiters_made": self.exploiters_made,
+            "exploiter_win_rates": dict(self.exploiter_win_rates),
             "pending_exploiter": self.pending,
             "exploiter_wait_s": self.worker.waited if self.worker is not None else 0.0,
         }
@@ -639,16 +651,20 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def format_pool(state: dict[str, Any]) -> str:
-    """The pool at the end: each member's recent games, the learner's score there, its Elo."""
+    """The pool at the end: each member's recent games, the learner's score there, its Elo, and
+    for an exploiter its own win rate against the learner it trained on."""
     rows = []
+    own = state.get("exploiter_win_rates", {})
     for name, results in state["results"].items():
         score = 100.0 * sum(results) / len(results) if results else "-"
-        rows.append((name, len(results), score, state["ratings"].get(name, 0.0)))
+        won = 100.0 * own[name] if name in own else "-"
+        rows.append((name, len(results), score, state["ratings"].get(name, 0.0), won))
     learner = state["ratings"]["learner"]
+    header = ("opponent", "recent games", "learner score %", "Elo", "won vs its target %")
     return "\n\n".join(
         [
             f"the pool after {state['num_timesteps']} steps (learner Elo {learner:.0f})",
-            common.table(("opponent", "recent games", "learner score %", "Elo"), rows),
+            common.table(header, rows),
         ]
     )
 

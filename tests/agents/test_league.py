@@ -12,10 +12,22 @@ import torch
 pytest.importorskip("stable_baselines3")
 
 from agents.exploit import make_learner  # noqa: E402
-from agents.league import LeagueCallback, load_league_config, main, train_league  # noqa: E402
-from agents.league_exploiter import ExploiterJob, ExploiterWorker, train_exploiter  # noqa: E402
+from agents.league import (  # noqa: E402
+    LeagueCallback,
+    format_pool,
+    load_league_config,
+    main,
+    train_league,
+)
+from agents.league_exploiter import (  # noqa: E402
+    ExploiterJob,
+    ExploiterWorker,
+    against_target,
+    train_exploiter,
+)
 from agents.league_pool import Pool, PoolOpponent  # noqa: E402
 from vooga_env.envs.sb3 import FightVecEnv  # noqa: E402
+from vooga_env.game.actions import Action  # noqa: E402
 from vooga_env.game.config import CONFIG_DIR, ConfigError, load_config  # noqa: E402
 from vooga_env.policies.batched import VectorOpponent, scripted_actions  # noqa: E402
 from vooga_env.policies.models import load_model  # noqa: E402
@@ -63,6 +75,8 @@ def test_a_smoke_league_pools_snapshots_and_exploiters_and_resumes(tmp_path):
     assert state["snapshots"] == ["snapshot_1024", "snapshot_2048"]  # window 2
     assert state["exploiters"] == ["exploiter_2048"]
     assert (tmp_path / "exploiters" / "exploiter_2048.zip").is_file()
+    result = json.loads((tmp_path / "exploiters" / "exploiter_2048.json").read_text())
+    assert state["exploiter_win_rates"] == {"exploiter_2048": result["best_win_rate"]}
     assert sum(len(state["results"][name]) for name in ("rush", "punisher")) > 0
     assert state["ratings"]["learner"] != 1200.0  # Elo moved with the games
     assert set(state["styles"]) == {"styles_0"}  # the smoke's random-style opponent, kept
@@ -70,6 +84,17 @@ def test_a_smoke_league_pools_snapshots_and_exploiters_and_resumes(tmp_path):
     assert load_model(final).num_timesteps == 4096
     resumed = json.loads((tmp_path / "train_state.json").read_text())
     assert resumed["snapshots"] == ["snapshot_3072", "snapshot_4096"]
+
+
+def test_the_pool_table_shows_each_exploiters_wins_against_its_own_target():
+    state = {
+        "num_timesteps": 4096,
+        "ratings": {"learner": 1300.0, "rush": 1200.0, "exploiter_2048": 1250.0},
+        "results": {"rush": [1.0, 0.0], "exploiter_2048": [1.0]},
+        "exploiter_win_rates": {"exploiter_2048": 0.75},
+    }
+    rows = {line.split()[0]: line.split() for line in format_pool(state).splitlines()[4:]}
+    assert rows["exploiter_2048"][-1] == "75.00" and rows["rush"][-1] == "-"
 
 
 def test_self_play_from_scratch_has_only_snapshots(tmp_path, capsys):
@@ -194,6 +219,10 @@ def test_parallel_exploiters_continue_from_the_last_and_a_resume_trains_them_aga
     train_league(config, tmp_path, resume=True, progress=False)
     state = json.loads((tmp_path / "train_state.json").read_text())
     assert state["exploiters"] == ["exploiter_1024", "exploiter_2048"]
+    for name in state["exploiters"]:  # each played the learner it trained on, once trained
+        result = json.loads((tmp_path / "exploiters" / f"{name}.json").read_text())
+        assert result["target"] == name.replace("exploiter", "target") + ".zip"
+        assert state["exploiter_win_rates"][name] == result["best_win_rate"]
     league = LeagueCallback(config, tmp_path, state)
     job = replace(league._job(**pending), out=str(tmp_path / "again.zip"))
     trained = [load_model(path) for path in (job.init, train_exploiter(job))]
@@ -218,6 +247,28 @@ def test_a_failed_exploiter_process_is_an_error_that_names_it(tmp_path):
     worker.submit(ExploiterJob(missing, True, 0, 0, 64, "small", 2, str(tmp_path / "e.zip")))
     with pytest.raises(RuntimeError, match="the exploiter process training .*e.zip exited"):
         worker.collect()
+
+
+def always(action: Action, path) -> str:
+    """A saved model (by seat) that takes `action` whatever it sees."""
+    model = make_learner(FightVecEnv(2, "small"), 0)
+    with torch.no_grad():
+        model.policy.action_net.weight.zero_()
+        model.policy.action_net.bias.fill_(-20.0)
+        model.policy.action_net.bias[action] = 20.0
+    model.save(path)
+    return str(path)
+
+
+@pytest.mark.parametrize(("action", "won"), [(Action.RIGHT, 1.0), (Action.IDLE, 0.0)])
+def test_a_trained_exploiter_counts_its_wins_against_its_own_target(tmp_path, action, won):
+    """Against a learner that stands still, an exploiter that walks in shoves it off the stage
+    every game, sampling or not; one that stands still too wins none."""
+    target = always(Action.IDLE, tmp_path / "idle.zip")
+    job = ExploiterJob(target, True, 0, 0, 64, "small", 2, str(tmp_path / "e.zip"))
+    exploiter = load_model(always(action, tmp_path / "exploiter.zip"))
+    rates = {"sampled": won, "argmax": won}
+    assert against_target(exploiter, job) == {"win_rate": rates, "best_win_rate": won}
 
 
 @pytest.mark.parametrize(
