@@ -312,7 +312,7 @@ class LeagueCallback(BaseCallback):
         if self.worker is not None:
             self.logger.record("league/exploiter_wait_s", self.worker.waited)
         if self.exploiter_win_rates:
-            latest = list(self.exploiter_win_rates.values())[-1]
+            latest = next(reversed(self.exploiter_win_rates.values()))
             self.logger.record("league/exploiter_win_rate", latest)
         return True
 
