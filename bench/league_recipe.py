@@ -4,6 +4,11 @@
     python -m bench.league_recipe --config selfplay        # self-play from scratch
     python -m bench.league_recipe --model runs/league/final.zip   # measure a trained model only
     python -m bench.league_recipe --quick                  # seconds: proves the path works (CI)
+    python -m bench.league_recipe --steps 15300000 --exploit-steps 11500000  # no clock
+
+A run budgeted in minutes stops wherever the clock says, so on a busier machine it trains fewer
+steps; `--steps` and `--exploit-steps` take the clock away, and the same seed gives the same
+result however loaded the machine is, only later.
 
 For the model it prints and writes to OUT/result.json (OUT: runs/recipe/league_CONFIG):
 - its win rate against every scripted fighter over `--games` batched games (half in each seat,
@@ -20,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import time
 from pathlib import Path
 from typing import Any
@@ -90,8 +96,9 @@ def exploit_curve(
     model: Path, fight: Any, sampled: bool, seed: int, args: argparse.Namespace
 ) -> Any:
     """A fresh exploiter's win rates at each mark against the model's sampled or argmax play."""
+    minutes = math.inf if args.exploit_steps else args.exploit_minutes
     return exploit(
-        str(model), fight, args.exploit_minutes, evals=args.exploit_evals,
+        str(model), fight, minutes, steps=args.exploit_steps, evals=args.exploit_evals,
         eval_games=args.exploit_games, seed=seed, sampled=sampled,
     )["curve"]  # fmt: skip
 
@@ -125,7 +132,10 @@ def report(result: dict[str, Any]) -> str:
     lines.append(f"landed over {result['style']['games']} games: " + ", ".join(landed))
     for play, runs in result.get("exploit", {}).items():
         for run in runs:
-            marks = ", ".join(f"{r['minutes']:.1f} min {100 * _best(r):.0f}%" for r in run["curve"])
+            marks = ", ".join(
+                f"{r['minutes']:.1f} min ({r['steps']:,} steps) {100 * _best(r):.0f}%"
+                for r in run["curve"]
+            )
             lines.append(
                 f"exploiter (seed {run['seed']}) against its {play} play (its better of "
                 f"sampled/argmax): {marks}"
@@ -149,10 +159,16 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--minutes", type=_positive_float, help="the league's time budget (default: the config's)"
     )
+    parser.add_argument(
+        "--steps", type=_positive, help="train the league this many steps, no clock"
+    )
     parser.add_argument("--games", type=_positive, default=200)
     parser.add_argument("--elo-games", type=_positive, default=20)
     parser.add_argument("--style-games", type=_positive, default=20)
     parser.add_argument("--exploit-minutes", type=float, default=5.0, help="0: no exploiter")
+    parser.add_argument(
+        "--exploit-steps", type=_positive, help="each exploiter trains this many steps, no clock"
+    )
     parser.add_argument("--exploit-evals", type=_positive, default=5, help="marks in its budget")
     parser.add_argument("--exploit-games", type=_even, default=100, help="games a mark (even)")
     parser.add_argument(
@@ -166,11 +182,21 @@ def main(argv: list[str] | None = None) -> int:
         parser.error(
             f"--exploit-minutes: must be >= 0 (0: no exploiter), got {args.exploit_minutes}"
         )
+    if args.steps and args.minutes:
+        parser.error("--steps: not with --minutes (a budget of steps has no clock)")
+    if args.steps and args.model:
+        parser.error("--steps: not with --model (a model to measure is not trained)")
+    if args.exploit_steps and not args.exploit_minutes:
+        parser.error("--exploit-steps: not with --exploit-minutes 0 (no exploiter)")
     if args.quick:
-        args.config, args.minutes, args.games = "smoke", 1.0, 4
+        args.config, args.games = "smoke", 4
+        args.minutes = None if args.steps else 1.0
         args.elo_games, args.style_games, args.exploit_minutes = 1, 1, 0.02
         args.exploit_evals, args.exploit_games, args.exploit_seeds = 1, 4, [3]
-    config = load_league_config(args.config, seed=args.seed)
+    clock = 0.0 if args.steps else None  # 0: no clock
+    config = load_league_config(
+        args.config, seed=args.seed, total_timesteps=args.steps, minutes=clock
+    )
     one_core()  # as agents.league and agents.exploit run: one core each, two runs at a time
     args.out = args.out or Path("runs/recipe") / f"league_{args.config}"
     result: dict[str, Any] = {"config": config.name}

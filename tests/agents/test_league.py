@@ -332,9 +332,32 @@ def test_the_league_benchmark_measures_every_target(tmp_path):
         assert run["seed"] == 3 and run["curve"][0]["steps"] == 0 and run["curve"][-1]["steps"] > 0
 
 
+def test_the_league_benchmark_by_steps_gives_the_same_result_twice(tmp_path):
+    from bench import league_recipe
+
+    flags = ["--quick", "--steps", "1024", "--exploit-steps", "512"]
+    results = []
+    for run in ("first", "second"):
+        assert league_recipe.main([*flags, "--out", str(tmp_path / run)]) == 0
+        result = json.loads((tmp_path / run / "result.json").read_text())
+        del result["train_minutes"], result["model"]
+        for runs in result["exploit"].values():
+            for row in runs[0]["curve"]:
+                del row["minutes"]  # the clock's, not the steps'
+        results.append(result)
+    assert results[0] == results[1]
+    assert 1024 <= results[0]["steps"] < 1024 + 8 * 64  # the smoke's rollout: 8 fights x 64
+    for play in ("sampled", "argmax"):
+        (run,) = results[0]["exploit"][play]
+        assert 512 <= run["curve"][-1]["steps"] < 512 + 64 * 128  # the exploiter's rollout
+
+
 @pytest.mark.parametrize(
     ("flag", "message"),
     [
+        (["--steps", "1000", "--minutes", "3"], "--steps: not with --minutes"),
+        (["--steps", "1000", "--model", "final.zip"], "--steps: not with --model"),
+        (["--exploit-steps", "9", "--exploit-minutes", "0"], "--exploit-steps: not with"),
         (["--exploit-games", "3"], "must be an even number >= 2, got 3"),
         (["--games", "0"], "must be >= 1, got 0"),
         (["--exploit-minutes", "-1"], "--exploit-minutes: must be >= 0"),
