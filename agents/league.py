@@ -60,6 +60,7 @@ from .checkpoints import (
     resume_state,
     start_fresh,
 )
+from .exploiter_loss import ExploiterLoss
 from .lead_reward import LeadReward
 from .league_exploiter import ExploiterJob, ExploiterWorker, train_exploiter
 from .league_pool import WEIGHTINGS, Pool, PoolOpponent
@@ -117,6 +118,9 @@ class LeagueConfig:
     # Above 0: the learner gains this on every step it leads (more stocks, then more health) and
     # loses it on every step it trails (agents.lead_reward; training only).
     lead_reward: float = 0.0
+    # Above 0: the learner loses this much more at the end of every game it loses to an exploiter
+    # of its pool (agents.exploiter_loss; training only).
+    exploiter_loss: float = 0.0
     # This many random-style opponents in the pool from the start (vooga_env.policies.
     # random_styles); each draws a new style once the learner's score against it reaches
     # `styles_redraw` over a full `results_window`.
@@ -171,6 +175,11 @@ class LeagueConfig:
             raise ConfigError(
                 f"lead_reward = {self.lead_reward} is not allowed: in [0, 1) (0: none; "
                 "docs/league.md measured 0.005 a step)"
+            )
+        if self.exploiter_loss < 0.0:
+            raise ConfigError(
+                f"exploiter_loss = {self.exploiter_loss} is not allowed: >= 0 (0: none; "
+                "docs/league.md measured 5, a ring-out's worth)"
             )
 
 
@@ -447,6 +456,8 @@ def build(config: LeagueRunConfig, folder: Path, state: dict[str, Any], resume: 
     )
     if config.league.lead_reward:
         envs = LeadReward(envs, config.league.lead_reward)
+    if config.league.exploiter_loss:
+        envs = ExploiterLoss(envs, config.league.exploiter_loss, opponent, league.exploiters)
     ppo = config.ppo
     if ppo.normalize_reward:
         envs = VecNormalize(envs, norm_obs=False, norm_reward=True, gamma=ppo.gamma)
