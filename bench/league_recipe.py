@@ -18,7 +18,8 @@ For the model it prints and writes to OUT/result.json (OUT: runs/recipe/league_C
   it landed, summed, and their shares;
 - unless `--exploit-minutes 0`: a fresh exploiter's win rate over its training against the
   model's argmax and sampled play (`agents.exploit`), `--exploit-minutes` each, one exploiter
-  for each of `--exploit-seeds` (one exploiter held to 0% is no proof: another seed may win).
+  for each of `--exploit-seeds` (one exploiter held to 0% is no proof: another seed may win),
+  `--exploit-jobs` at a time, one core each.
 """
 
 from __future__ import annotations
@@ -26,7 +27,9 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import multiprocessing
 import time
+from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
@@ -82,14 +85,26 @@ def measure(model: Path, args: argparse.Namespace) -> dict[str, Any]:
     result["elo"] = [{"name": name, "rating": rating} for name, rating in table.ranking()]
     result["style"] = style(network, fight, args.style_games, 13)
     if args.exploit_minutes:
-        result["exploit"] = {
+        result["exploit"] = exploit_curves(model, fight, args)
+    return result
+
+
+def exploit_curves(model: Path, fight: Any, args: argparse.Namespace) -> dict[str, Any]:
+    """play -> one exploiter's curve a seed, trained `--exploit-jobs` at a time (one process and
+    one core each, as docs/league.md measures them: two at a time on this 2-core machine)."""
+    context = multiprocessing.get_context("spawn")  # no copy of torch's threads
+    with ProcessPoolExecutor(args.exploit_jobs, mp_context=context, initializer=one_core) as pool:
+        futures = {
             play: [
-                {"seed": seed, "curve": exploit_curve(model, fight, not deterministic, seed, args)}
+                (seed, pool.submit(exploit_curve, model, fight, not deterministic, seed, args))
                 for seed in args.exploit_seeds
             ]
             for play, deterministic in PLAYS.items()
         }
-    return result
+        return {
+            play: [{"seed": seed, "curve": future.result()} for seed, future in runs]
+            for play, runs in futures.items()
+        }
 
 
 def exploit_curve(
@@ -175,6 +190,9 @@ def main(argv: list[str] | None = None) -> int:
         "--exploit-seeds", type=_non_negative, nargs="+", default=[3, 4], metavar="SEED",
         help="one exploiter a seed, against each play (default: 3 4)",
     )  # fmt: skip
+    parser.add_argument(
+        "--exploit-jobs", type=_positive, default=2, help="exploiters trained at a time (default 2)"
+    )
     parser.add_argument("--out", type=Path, help="run folder (default runs/recipe/league_CONFIG)")
     parser.add_argument("--quick", action="store_true", help="the smoke league, a few games")
     args = parser.parse_args(argv)

@@ -333,12 +333,14 @@ def test_the_league_benchmark_measures_every_target(tmp_path):
 
 
 def test_the_league_benchmark_by_steps_gives_the_same_result_twice(tmp_path):
+    """Once with its exploiters one at a time, once two at a time: the same result."""
     from bench import league_recipe
 
     flags = ["--quick", "--steps", "1024", "--exploit-steps", "512"]
     results = []
-    for run in ("first", "second"):
-        assert league_recipe.main([*flags, "--out", str(tmp_path / run)]) == 0
+    for run, jobs in (("first", "1"), ("second", "2")):
+        out = ["--exploit-jobs", jobs, "--out", str(tmp_path / run)]
+        assert league_recipe.main([*flags, *out]) == 0
         result = json.loads((tmp_path / run / "result.json").read_text())
         del result["train_minutes"], result["model"]
         for runs in result["exploit"].values():
@@ -362,6 +364,7 @@ def test_the_league_benchmark_by_steps_gives_the_same_result_twice(tmp_path):
         (["--games", "0"], "must be >= 1, got 0"),
         (["--exploit-minutes", "-1"], "--exploit-minutes: must be >= 0"),
         (["--exploit-seeds", "-2"], "must be >= 0, got -2"),
+        (["--exploit-jobs", "0"], "must be >= 1, got 0"),
     ],
 )
 def test_the_league_benchmark_refuses_bad_flags_by_name(flag, message, capsys):
