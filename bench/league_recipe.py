@@ -1,6 +1,6 @@
 """The league recipe, measured against issue 12's targets: train it, then test it from outside.
 
-    python -m bench.league_recipe                          # train 15 min, then measure (~35 min)
+    python -m bench.league_recipe                          # train 15 min, then measure (~30 min)
     python -m bench.league_recipe --config selfplay        # self-play from scratch
     python -m bench.league_recipe --model runs/league/final.zip   # measure a trained model only
     python -m bench.league_recipe --quick                  # seconds: proves the path works (CI)
