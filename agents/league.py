@@ -36,6 +36,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import torch
 from stable_baselines3 import PPO
 from stable_baselines3.common.callbacks import BaseCallback
 from stable_baselines3.common.utils import set_random_seed
@@ -121,6 +122,9 @@ class LeagueConfig:
     # Above 0: the learner loses this much more at the end of every game it loses to an exploiter
     # of its pool (agents.exploiter_loss; training only).
     exploiter_loss: float = 0.0
+    # How the learner plays its training games against the exploiters of its pool: "sampled"
+    # (as against everyone else) or "argmax" (as the exploiters trained against it).
+    against_exploiters: str = "sampled"
     # This many random-style opponents in the pool from the start (vooga_env.policies.
     # random_styles); each draws a new style once the learner's score against it reaches
     # `styles_redraw` over a full `results_window`.
@@ -140,6 +144,7 @@ class LeagueConfig:
             "exploiter_play": EXPLOITER_PLAYS,
             "exploiter_start": EXPLOITER_STARTS,
             "exploiter_pool_play": tuple(PLAYS),
+            "against_exploiters": tuple(PLAYS),
         }
         for key, allowed in choices.items():
             if getattr(self, key) not in allowed:
@@ -209,6 +214,11 @@ class LeagueRunConfig:
             raise ConfigError(
                 f"leagues = {self.leagues} is not allowed with [league] select_games = 0: the "
                 "leagues' final models are compared over select_games games (set it > 0, e.g. 40)"
+            )
+        if self.league.against_exploiters == "argmax" and self.ppo.frame != "opponent":
+            raise ConfigError(
+                f'[league] against_exploiters = "argmax" is not allowed with [ppo] frame = '
+                f'{self.ppo.frame!r}: only the facing learner (frame = "opponent") plays it'
             )
         if self.league.screen_steps and self.leagues == 1:
             raise ConfigError(
@@ -313,6 +323,7 @@ class LeagueCallback(BaseCallback):
         every = self.league.exploiter_every
         if every and self.num_timesteps - self.last_exploiter >= every:
             self._exploiter()
+        self._argmax_against_exploiters()
         self.logger.record("league/learner_elo", self.pool.ratings["learner"])
         self.logger.record("league/pool_size", len(self.pool.members))
         self.logger.record("league/scripted_joined", self.joined)
@@ -324,6 +335,15 @@ class LeagueCallback(BaseCallback):
             latest = next(reversed(self.exploiter_win_rates.values()))
             self.logger.record("league/exploiter_win_rate", latest)
         return True
+
+    def _on_training_start(self) -> None:
+        self._argmax_against_exploiters()
+
+    def _argmax_against_exploiters(self) -> None:
+        """Have the learner take its argmax in the fights an exploiter plays, if so set."""
+        if self.league.against_exploiters == "argmax":
+            rows = [name in self.exploiters for name in self.opponent.assigned]
+            self.model.policy.argmax_rows = torch.as_tensor(rows)
 
     def _redraw_beaten_styles(self) -> None:
         """A random-style member the learner beats often enough plays a new style, its record

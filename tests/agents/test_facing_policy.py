@@ -111,3 +111,20 @@ def test_a_bad_frame_is_refused_by_name(tmp_path, text, message):
     path.write_text(text)
     with pytest.raises(ConfigError, match=message):
         load_train_config(path)
+
+
+def test_the_rows_asked_take_the_argmax_and_the_others_sample(saved, observations):
+    plain, _ = observations
+    obs = torch.as_tensor(plain)
+    rows = torch.arange(len(plain)) % 2 == 0
+    saved.policy.argmax_rows = rows
+    try:
+        with torch.no_grad():
+            actions, _, log_probs = saved.policy(obs)
+            distribution = saved.policy.get_distribution(obs)
+    finally:
+        saved.policy.argmax_rows = None
+    mode = distribution.mode()
+    assert torch.equal(actions[rows], mode[rows])
+    assert not torch.equal(actions[~rows], mode[~rows])  # a barely trained network samples
+    torch.testing.assert_close(log_probs, distribution.log_prob(actions))

@@ -14,6 +14,7 @@ pytest.importorskip("stable_baselines3")
 from agents.exploit import make_learner  # noqa: E402
 from agents.league import (  # noqa: E402
     LeagueCallback,
+    build,
     format_pool,
     load_league_config,
     main,
@@ -290,6 +291,26 @@ def test_exploiters_train_against_the_learner_playing_as_asked(tmp_path, play, d
     assert LeagueCallback(config, tmp_path, {"exploiters_made": 5}).exploiters_made == 5
 
 
+def test_the_learner_takes_its_argmax_against_exploiters_only_when_asked(tmp_path):
+    def trained(play, folder):
+        config = load_league_config("smoke")
+        config = replace(config, league=replace(config.league, against_exploiters=play))
+        model, league = build(config, folder, {}, resume=False, saved=None)
+        model.learn(config.total_timesteps, callback=league)
+        return model, league
+
+    model, league = trained("argmax", tmp_path / "argmax")
+    assert league.exploiters  # the smoke pools one at 2048 steps
+    league.opponent.assigned[:2] = [league.exploiters[0], league.snapshots[0]]
+    league.locals["dones"] = np.zeros(len(league.opponent.assigned), dtype=bool)
+    league._on_step()  # no fight ended: the assignments stay
+    rows = model.policy.argmax_rows.tolist()
+    assert rows == [name in league.exploiters for name in league.opponent.assigned]
+    assert rows[:2] == [True, False]
+    model, _ = trained("sampled", tmp_path / "sampled")
+    assert model.policy.argmax_rows is None
+
+
 def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
     with pytest.raises(ConfigError, match="pfsp = 'greedy' is not allowed"):
         load_league_config("smoke", league={"pfsp": "greedy"})
@@ -307,6 +328,10 @@ def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
         load_league_config("smoke", league={"styles": -1})
     with pytest.raises(ConfigError, match="styles_redraw = 0.0 is not allowed: in \\(0, 1\\]"):
         load_league_config("smoke", league={"styles_redraw": 0.0})
+    with pytest.raises(ConfigError, match="against_exploiters = 'best' is not allowed: one of"):
+        load_league_config("smoke", league={"against_exploiters": "best"})
+    with pytest.raises(ConfigError, match='against_exploiters = "argmax" is not allowed with'):
+        load_league_config("smoke", ppo={"frame": "seat"}, league={"against_exploiters": "argmax"})
     with pytest.raises(ConfigError, match="lead_reward = -0.005 is not allowed: in \\[0, 1\\)"):
         load_league_config("smoke", league={"lead_reward": -0.005})
     with pytest.raises(SystemExit) as stop:

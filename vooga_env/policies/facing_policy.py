@@ -29,6 +29,8 @@ class FacingPolicy(ActorCriticPolicy):
         self.register_buffer("mirror_index", torch.as_tensor(MIRROR_INDEX), persistent=False)
         self.register_buffer("mirror_sign", torch.as_tensor(MIRROR_SIGN), persistent=False)
         self.register_buffer("turned_actions", torch.as_tensor(TURNED_ACTIONS), persistent=False)
+        # rows of a training batch that take the mode instead of a sample (set by the league)
+        self.argmax_rows: torch.Tensor | None = None
 
     def _latent(self, obs: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
         """The actor's and critic's latents of the turned observations, and which were turned."""
@@ -48,6 +50,8 @@ class FacingPolicy(ActorCriticPolicy):
         latent_pi, latent_vf, turned = self._latent(obs)
         distribution = self._turned_back(latent_pi, turned)
         actions = distribution.get_actions(deterministic=deterministic)
+        if self.argmax_rows is not None and not deterministic:
+            actions = torch.where(self.argmax_rows, distribution.mode(), actions)
         return actions, self.value_net(latent_vf), distribution.log_prob(actions)
 
     def evaluate_actions(
