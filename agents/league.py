@@ -77,6 +77,7 @@ from .train import learn_and_save, load_init, policy_class, start_from
 from .train_config import PPOConfig
 
 EXPLOITER_PLAYS = ("sampled", "argmax", "alternate")
+AGAINST_EXPLOITERS = ("sampled", "argmax", "half")
 EXPLOITER_STARTS = ("new", "last", "learner")
 
 
@@ -123,7 +124,8 @@ class LeagueConfig:
     # of its pool (agents.exploiter_loss; training only).
     exploiter_loss: float = 0.0
     # How the learner plays its training games against the exploiters of its pool: "sampled"
-    # (as against everyone else) or "argmax" (as the exploiters trained against it).
+    # (as against everyone else), "argmax" (as the exploiters trained against it), or "half"
+    # (argmax in the even-numbered fights, so neither play goes untrained against them).
     against_exploiters: str = "sampled"
     # This many random-style opponents in the pool from the start (vooga_env.policies.
     # random_styles); each draws a new style once the learner's score against it reaches
@@ -144,7 +146,7 @@ class LeagueConfig:
             "exploiter_play": EXPLOITER_PLAYS,
             "exploiter_start": EXPLOITER_STARTS,
             "exploiter_pool_play": tuple(PLAYS),
-            "against_exploiters": tuple(PLAYS),
+            "against_exploiters": AGAINST_EXPLOITERS,
         }
         for key, allowed in choices.items():
             if getattr(self, key) not in allowed:
@@ -215,10 +217,11 @@ class LeagueRunConfig:
                 f"leagues = {self.leagues} is not allowed with [league] select_games = 0: the "
                 "leagues' final models are compared over select_games games (set it > 0, e.g. 40)"
             )
-        if self.league.against_exploiters == "argmax" and self.ppo.frame != "opponent":
+        if self.league.against_exploiters != "sampled" and self.ppo.frame != "opponent":
             raise ConfigError(
-                f'[league] against_exploiters = "argmax" is not allowed with [ppo] frame = '
-                f'{self.ppo.frame!r}: only the facing learner (frame = "opponent") plays it'
+                f"[league] against_exploiters = {self.league.against_exploiters!r} is not allowed "
+                f"with [ppo] frame = {self.ppo.frame!r}: only the facing learner "
+                '(frame = "opponent") plays it'
             )
         if self.league.screen_steps and self.leagues == 1:
             raise ConfigError(
@@ -340,9 +343,14 @@ class LeagueCallback(BaseCallback):
         self._argmax_against_exploiters()
 
     def _argmax_against_exploiters(self) -> None:
-        """Have the learner take its argmax in the fights an exploiter plays, if so set."""
-        if self.league.against_exploiters == "argmax":
-            rows = [name in self.exploiters for name in self.opponent.assigned]
+        """Have the learner take its argmax in the fights an exploiter plays (with "half", the
+        even-numbered ones), if so set."""
+        play = self.league.against_exploiters
+        if play != "sampled":
+            rows = [
+                name in self.exploiters and (play == "argmax" or row % 2 == 0)
+                for row, name in enumerate(self.opponent.assigned)
+            ]
             self.model.policy.argmax_rows = torch.as_tensor(rows)
 
     def _redraw_beaten_styles(self) -> None:

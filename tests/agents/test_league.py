@@ -307,6 +307,10 @@ def test_the_learner_takes_its_argmax_against_exploiters_only_when_asked(tmp_pat
     rows = model.policy.argmax_rows.tolist()
     assert rows == [name in league.exploiters for name in league.opponent.assigned]
     assert rows[:2] == [True, False]
+    model, league = trained("half", tmp_path / "half")
+    league.opponent.assigned[:4] = [league.exploiters[0]] * 3 + [league.snapshots[0]]
+    league._argmax_against_exploiters()
+    assert model.policy.argmax_rows.tolist()[:4] == [True, False, True, False]
     model, _ = trained("sampled", tmp_path / "sampled")
     assert model.policy.argmax_rows is None
 
@@ -330,8 +334,9 @@ def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
         load_league_config("smoke", league={"styles_redraw": 0.0})
     with pytest.raises(ConfigError, match="against_exploiters = 'best' is not allowed: one of"):
         load_league_config("smoke", league={"against_exploiters": "best"})
-    with pytest.raises(ConfigError, match='against_exploiters = "argmax" is not allowed with'):
-        load_league_config("smoke", ppo={"frame": "seat"}, league={"against_exploiters": "argmax"})
+    for play in ("argmax", "half"):
+        with pytest.raises(ConfigError, match=f"against_exploiters = '{play}' is not allowed with"):
+            load_league_config("smoke", ppo={"frame": "seat"}, league={"against_exploiters": play})
     with pytest.raises(ConfigError, match="lead_reward = -0.005 is not allowed: in \\[0, 1\\)"):
         load_league_config("smoke", league={"lead_reward": -0.005})
     with pytest.raises(SystemExit) as stop:
