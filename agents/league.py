@@ -78,7 +78,7 @@ from .train_config import PPOConfig
 
 EXPLOITER_PLAYS = ("sampled", "argmax", "alternate")
 AGAINST_EXPLOITERS = ("sampled", "argmax", "half")
-EXPLOITER_STARTS = ("new", "last", "learner")
+EXPLOITER_STARTS = ("new", "last", "lines", "learner")
 
 
 @dataclass(frozen=True)
@@ -102,8 +102,9 @@ class LeagueConfig:
     exploiter_parallel: bool = False
     # What each exploiter starts from: "new" (a new network, which looks for the learner's holes
     # afresh), "last" (the last exploiter: a line that has trained all the league long against
-    # the learner's past selves) or "learner" (the learner's weights at its mark: it fights as
-    # well as the learner from its first step).
+    # the learner's past selves), "lines" (two such lines, taking turns: each exploiter goes on
+    # from the one made two marks before, the first two from new networks) or "learner" (the
+    # learner's weights at its mark: it fights as well as the learner from its first step).
     exploiter_start: str = "new"
     # How exploiters play once in the pool: "sampled" (as snapshots do) or "argmax" (as a
     # measuring exploiter is judged).
@@ -167,6 +168,11 @@ class LeagueConfig:
             raise ConfigError(
                 "exploiter_parallel = true is not allowed with exploiter_every = 0: set "
                 "exploiter_every > 0, or exploiter_parallel = false"
+            )
+        if self.exploiter_start == "lines" and self.exploiters < 2:
+            raise ConfigError(
+                f"exploiter_start = 'lines' is not allowed with exploiters = {self.exploiters}: "
+                "each line goes on from the exploiter two marks back, so keep >= 2"
             )
         if not 0.0 <= self.join_win_rate <= 1.0:
             raise ConfigError(f"join_win_rate = {self.join_win_rate} is not allowed: in [0, 1]")
@@ -434,7 +440,8 @@ class LeagueCallback(BaseCallback):
         start = self.league.exploiter_start
         if start == "learner":
             return f"target_{steps}.zip"  # the learner as it is now
-        return f"{self.exploiters[-1]}.zip" if start == "last" and self.exploiters else ""
+        lines = {"last": 1, "lines": 2}.get(start, 0)  # how many lines take turns
+        return f"{self.exploiters[-lines]}.zip" if 0 < lines <= len(self.exploiters) else ""
 
     def _job(
         self, steps: int, argmax: bool, target_seed: int, seed: int, init: str

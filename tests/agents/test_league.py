@@ -236,7 +236,12 @@ def test_parallel_exploiters_continue_from_the_last_and_a_resume_trains_them_aga
         members = LeagueCallback(replace(config, league=league), tmp_path, state).pool.members
         assert [members[name].policy.deterministic for name in state["exploiters"]] == [argmax] * 2
         assert not members["snapshot_3072"].policy.deterministic  # snapshots always sample
-    starts = {"last": "exploiter_2048.zip", "new": "", "learner": "target_4096.zip"}
+    starts = {
+        "last": "exploiter_2048.zip",
+        "lines": "exploiter_1024.zip",  # the line exploiter_2048 is not on
+        "new": "",
+        "learner": "target_4096.zip",
+    }
     for start, init in starts.items():  # what the next exploiter (at 4096) would start from
         league = replace(config.league, exploiter_start=start)
         assert LeagueCallback(replace(config, league=league), tmp_path, state)._start(4096) == init
@@ -326,6 +331,8 @@ def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
         load_league_config("smoke", league={"exploiter_parallel": True})
     with pytest.raises(ConfigError, match="exploiter_start = 'old' is not allowed: one of"):
         load_league_config("smoke", league={"exploiter_start": "old"})
+    with pytest.raises(ConfigError, match="'lines' is not allowed with exploiters = 1: each"):
+        load_league_config("smoke", league={"exploiter_start": "lines", "exploiters": 1})
     with pytest.raises(ConfigError, match="exploiter_pool_play = 'best' is not allowed: one of"):
         load_league_config("smoke", league={"exploiter_pool_play": "best"})
     with pytest.raises(ConfigError, match="styles = -1 is not allowed: >= 0"):
