@@ -18,6 +18,7 @@ learner (`exploiter_start`); with `exploiter_parallel` it trains in a second pro
 learner goes on, and joins at the next mark. With `join_win_rate` the scripted fighters join one at
 a time, weak to strong; with `styles`, that many random-style opponents play from the start, each
 drawing a new style once the learner beats it (vooga_env.policies.random_styles); with
+`self_play`, the learner's current weights play as one more member ("self"); with
 `lead_reward` the learner is paid a little on every step it leads (agents.lead_reward). With
 `leagues` > 1, that many leagues train side by side, one process each, and the best final model is
 shipped (agents.league_population), each first screened by a fresh exploiter with `screen_steps`.
@@ -64,7 +65,7 @@ from .checkpoints import (
 from .exploiter_loss import ExploiterLoss
 from .lead_reward import LeadReward
 from .league_exploiter import ExploiterJob, ExploiterWorker, train_exploiter
-from .league_pool import WEIGHTINGS, Pool, PoolOpponent
+from .league_pool import WEIGHTINGS, CurrentSelf, Pool, PoolOpponent
 from .league_population import (
     LeagueFailed,
     league_folder,
@@ -128,6 +129,10 @@ class LeagueConfig:
     # (as against everyone else), "argmax" (as the exploiters trained against it), or "half"
     # (argmax in the even-numbered fights, so neither play goes untrained against them).
     against_exploiters: str = "sampled"
+    # The learner's current weights as a member ("self", sampling, copied in at every rollout),
+    # drawn by PFSP like the rest: late in a league the learner beats every other member ~100%
+    # and PFSP draws them evenly; against itself it scores 50% whatever it learns.
+    self_play: bool = False
     # This many random-style opponents in the pool from the start (vooga_env.policies.
     # random_styles); each draws a new style once the learner's score against it reaches
     # `styles_redraw` over a full `results_window`.
@@ -277,6 +282,10 @@ class LeagueCallback(BaseCallback):
                 self.styles[name].load_state(state["styles"][name])
             self.pool.add(name, self.styles[name], results.get(name))
         self.styles_redrawn = state.get("styles_redrawn", 0)
+        self.current_self: CurrentSelf | None = None
+        if self.league.self_play:
+            self.current_self = CurrentSelf(config.seed * 1000 + 99)
+            self.pool.add(CurrentSelf.name, self.current_self, results.get(CurrentSelf.name))
         self.snapshots: list[str] = []
         self.exploiters: list[str] = []
         for kind in ("snapshots", "exploiters"):
@@ -347,6 +356,10 @@ class LeagueCallback(BaseCallback):
 
     def _on_training_start(self) -> None:
         self._argmax_against_exploiters()
+
+    def _on_rollout_start(self) -> None:
+        if self.current_self is not None:
+            self.current_self.refresh(self.model)
 
     def _argmax_against_exploiters(self) -> None:
         """Have the learner take its argmax in the fights an exploiter plays (with "half", the

@@ -1,5 +1,6 @@
-"""The league's opponent pool: past snapshots, scripted fighters and exploiters, each fight's
-opponent drawn by prioritized fictitious self-play (PFSP) from the win rates the pool tracks.
+"""The league's opponent pool: past snapshots, scripted fighters, exploiters and (`CurrentSelf`)
+the learner itself, each fight's opponent drawn by prioritized fictitious self-play (PFSP) from
+the win rates the pool tracks.
 
 `PoolOpponent` is the batch opponent of a `FightVecEnv`: fight i plays `assigned[i]`, and
 `act(observations)` asks each member for its own rows only. `Pool.draw(rng)` picks a member
@@ -17,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from vooga_env.policies.models import FrozenPolicy
 from vooga_env.tools.elo import START_RATING, update
 
 WEIGHTINGS = ("squared", "variance", "linear", "even")
@@ -79,6 +81,24 @@ class Pool:
             "results": {name: list(values) for name, values in self.results.items()},
             "ratings": dict(self.ratings),
         }
+
+
+class CurrentSelf:
+    """The learner's current weights as a batch player, sampling: the one member a learner never
+    leaves behind. `refresh(model)` copies the weights in (the league does at every rollout)."""
+
+    name = "self"
+
+    def __init__(self, seed: int) -> None:
+        self.rng = np.random.default_rng(seed)
+        self.player: FrozenPolicy | None = None
+
+    def refresh(self, model: Any) -> None:
+        self.player = FrozenPolicy(model, self.name, deterministic=False)
+        self.player.rng = self.rng  # one stream over every refresh
+
+    def act(self, observations: np.ndarray) -> np.ndarray:
+        return self.player.act_batch(observations)
 
 
 class PoolOpponent:

@@ -31,7 +31,7 @@ from vooga_env.envs.sb3 import FightVecEnv  # noqa: E402
 from vooga_env.game.actions import Action  # noqa: E402
 from vooga_env.game.config import CONFIG_DIR, ConfigError, load_config  # noqa: E402
 from vooga_env.policies.batched import VectorOpponent, scripted_actions  # noqa: E402
-from vooga_env.policies.models import load_model  # noqa: E402
+from vooga_env.policies.models import FrozenPolicy, load_model  # noqa: E402
 
 
 def test_pfsp_draws_the_opponent_the_learner_beats_least_far_more_often():
@@ -318,6 +318,28 @@ def test_the_learner_takes_its_argmax_against_exploiters_only_when_asked(tmp_pat
     assert model.policy.argmax_rows.tolist()[:4] == [True, False, True, False]
     model, _ = trained("sampled", tmp_path / "sampled")
     assert model.policy.argmax_rows is None
+
+
+def test_the_current_self_plays_the_learners_weights_of_each_rollout(tmp_path):
+    """With `self_play` the pool holds "self", sampling with the weights the learner had when the
+    rollout began: copied in at each rollout, so an update shows at the next one and not before."""
+    config = load_league_config("smoke")
+    config = replace(config, league=replace(config.league, self_play=True))
+    model, league = build(config, tmp_path, {}, resume=False, saved=None)
+    model.learn(config.total_timesteps, callback=league)
+    assert len(league.pool.results["self"]) > 0  # the learner fought itself
+    observations = np.random.default_rng(2).uniform(-1, 1, (64, 41)).astype(np.float32)
+    current = league.current_self.player
+    assert not current.deterministic and current.frame == "opponent"
+
+    def logits():
+        return FrozenPolicy(model, deterministic=False).logits(observations)
+
+    assert not np.allclose(current.logits(observations), logits())  # the last update since
+    league.on_rollout_start()
+    assert np.array_equal(league.current_self.player.logits(observations), logits())
+    resumed = LeagueCallback(config, tmp_path, league.state())
+    assert list(resumed.pool.results["self"]) == list(league.pool.results["self"])
 
 
 def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
