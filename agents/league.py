@@ -131,7 +131,7 @@ class LeagueConfig:
     against_exploiters: str = "sampled"
     # The learner's current weights as a member ("self", sampling, copied in at every rollout),
     # drawn by PFSP like the rest: late in a league the learner beats every other member ~100%
-    # and PFSP draws them evenly; against itself it scores 50% whatever it learns.
+    # and PFSP draws them evenly; against itself it scores about 50% whatever it learns.
     self_play: bool = False
     # This many random-style opponents in the pool from the start (vooga_env.policies.
     # random_styles); each draws a new style once the learner's score against it reaches
