@@ -19,9 +19,11 @@ learner goes on, and joins at the next mark. With `join_win_rate` the scripted f
 a time, weak to strong; with `styles`, that many random-style opponents play from the start, each
 drawing a new style once the learner beats it (vooga_env.policies.random_styles); with
 `self_play`, the learner's current weights play as one more member ("self"); with
-`lead_reward` the learner is paid a little on every step it leads (agents.lead_reward). With
-`leagues` > 1, that many leagues train side by side, one process each, and the best final model is
-shipped (agents.league_population), each first screened by a fresh exploiter with `screen_steps`.
+`probe_games`, PFSP weighs an exploiter by the lower of the learner's sampled score and its
+argmax score in probe games at every snapshot; with `lead_reward` the learner is paid a little
+on every step it leads (agents.lead_reward). With `leagues` > 1, that many leagues train side by
+side, one process each, and the best final model is shipped (agents.league_population), each
+first screened by a fresh exploiter with `screen_steps`.
 Checkpoints, `--resume`, Ctrl-C and `OUT/final.zip` work as in agents.train; the learner's Elo, the
 pool's size and the PFSP win rates are logged (TensorBoard when installed).
 """
@@ -49,6 +51,7 @@ from vooga_env.policies import SCRIPTED
 from vooga_env.policies.batched import VectorOpponent
 from vooga_env.policies.models import frozen_batch, load_model
 from vooga_env.policies.random_styles import RandomStyles
+from vooga_env.tools.batch_match import batch_outcomes
 from vooga_env.tools.files import atomic_write
 
 from . import common
@@ -133,6 +136,10 @@ class LeagueConfig:
     # drawn by PFSP like the rest: late in a league the learner beats every other member ~100%
     # and PFSP draws them evenly; against itself it scores about 50% whatever it learns.
     self_play: bool = False
+    # Above 0 (even): at every snapshot the learner's argmax plays this many games against each
+    # exploiter of the pool, and PFSP weighs an exploiter by the lower of that score and the
+    # training games' (played sampling): one that beats the argmax alone is drawn as hard.
+    probe_games: int = 0
     # This many random-style opponents in the pool from the start (vooga_env.policies.
     # random_styles); each draws a new style once the learner's score against it reaches
     # `styles_redraw` over a full `results_window`.
@@ -162,6 +169,10 @@ class LeagueConfig:
         for key in ("save_steps", "window", "results_window", "exploiter_steps", "exploiters"):
             if getattr(self, key) <= 0:
                 raise ConfigError(f"{key} = {getattr(self, key)} is not allowed: must be > 0")
+        if self.probe_games < 0 or self.probe_games % 2:
+            raise ConfigError(
+                f"probe_games = {self.probe_games} is not allowed: an even number >= 0 (0: none)"
+            )
         if self.select_games < 0 or self.select_games % 2:
             raise ConfigError(
                 f"select_games = {self.select_games} is not allowed: an even number >= 0 "
@@ -268,6 +279,7 @@ class LeagueCallback(BaseCallback):
         self.rng = np.random.default_rng([config.seed, 1])
         self.pool = Pool(self.league.results_window, self.league.pfsp, self.league.floor)
         self.pool.ratings.update(state.get("ratings", {}))
+        self.pool.probes.update(state.get("probes", {}))
         results = state.get("results", {})
         everyone = len(self.league.scripted) if not self.league.join_win_rate else 1
         self.joined = 0
@@ -352,6 +364,8 @@ class LeagueCallback(BaseCallback):
         if self.exploiter_win_rates:
             latest = next(reversed(self.exploiter_win_rates.values()))
             self.logger.record("league/exploiter_win_rate", latest)
+        if self.pool.probes:
+            self.logger.record("league/argmax_probe_min", min(self.pool.probes.values()))
         return True
 
     def _on_training_start(self) -> None:
@@ -412,6 +426,22 @@ class LeagueCallback(BaseCallback):
         atomic_write(self.folder / "snapshots" / f"{name}.zip", model.save)
         self._join("snapshots", name)
         self.last_save = steps
+        self._probe_exploiters(model, steps)
+
+    def _probe_exploiters(self, model: PPO, steps: int) -> None:
+        """The learner's argmax against each pooled exploiter, `probe_games` games each, as the
+        pool's probes (PFSP then draws an exploiter that beats the argmax more often)."""
+        games = self.league.probe_games
+        if not games or not self.exploiters:
+            return
+        fights = games * len(self.exploiters)
+        mixed = PoolOpponent(self.pool, fights)
+        mixed.assigned = [self.exploiters[fight % len(self.exploiters)] for fight in range(fights)]
+        learner = frozen_batch(model, "learner", True, self.config.seed)
+        outcomes = np.array(batch_outcomes(learner, mixed, fights, steps, self.config.fight))
+        scored = (outcomes == "win") + 0.5 * (outcomes == "draw")
+        for offset, name in enumerate(self.exploiters):
+            self.pool.probes[name] = float(scored[offset :: len(self.exploiters)].mean())
 
     def exploiter_argmax(self) -> bool:
         """Whether the next exploiter trains against the learner's argmax play, as
@@ -711,15 +741,24 @@ def main(argv: list[str] | None = None) -> int:
 
 def format_pool(state: dict[str, Any]) -> str:
     """The pool at the end: each member's recent games, the learner's score there, its Elo, and
-    for an exploiter its own win rate against the learner it trained on."""
+    for an exploiter its own win rate against the learner it trained on and (`probe_games`) the
+    learner's argmax score in the last probe."""
     rows = []
-    own = state.get("exploiter_win_rates", {})
+    own, probes = state.get("exploiter_win_rates", {}), state.get("probes", {})
     for name, results in state["results"].items():
         score = 100.0 * sum(results) / len(results) if results else "-"
         won = 100.0 * own[name] if name in own else "-"
-        rows.append((name, len(results), score, state["ratings"].get(name, 0.0), won))
+        probe = 100.0 * probes[name] if name in probes else "-"
+        rows.append((name, len(results), score, state["ratings"].get(name, 0.0), won, probe))
     learner = state["ratings"]["learner"]
-    header = ("opponent", "recent games", "learner score %", "Elo", "won vs its target %")
+    header = (
+        "opponent",
+        "recent games",
+        "learner score %",
+        "Elo",
+        "won vs its target %",
+        "argmax probe %",
+    )
     return "\n\n".join(
         [
             f"the pool after {state['num_timesteps']} steps (learner Elo {learner:.0f})",

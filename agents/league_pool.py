@@ -36,6 +36,8 @@ class Pool:
         self.members: dict[str, Any] = {}
         self.results: dict[str, deque[float]] = {}
         self.ratings: dict[str, float] = {"learner": START_RATING}
+        # name -> the learner's argmax score in probe games against it, when probed
+        self.probes: dict[str, float] = {}
 
     def add(self, name: str, actor: Any, results: list[float] | None = None) -> None:
         self.members[name] = actor
@@ -44,6 +46,7 @@ class Pool:
 
     def drop(self, name: str) -> None:
         del self.members[name], self.results[name]
+        self.probes.pop(name, None)
 
     def win_rate(self, name: str) -> float:
         """The learner's recent score against `name` (0.5 before any game: unknown)."""
@@ -51,7 +54,10 @@ class Pool:
         return sum(results) / len(results) if results else 0.5
 
     def weights(self) -> np.ndarray:
-        p = np.array([self.win_rate(name) for name in self.members])
+        """PFSP's weights; a probed member counts at the lower of its two scores."""
+        p = np.array(
+            [min(self.win_rate(name), self.probes.get(name, 1.0)) for name in self.members]
+        )
         if self.weighting == "squared":
             weight = (1.0 - p) ** 2
         elif self.weighting == "variance":
@@ -80,6 +86,7 @@ class Pool:
         return {
             "results": {name: list(values) for name, values in self.results.items()},
             "ratings": dict(self.ratings),
+            "probes": dict(self.probes),
         }
 
 

@@ -93,9 +93,10 @@ def test_the_pool_table_shows_each_exploiters_wins_against_its_own_target():
         "ratings": {"learner": 1300.0, "rush": 1200.0, "exploiter_2048": 1250.0},
         "results": {"rush": [1.0, 0.0], "exploiter_2048": [1.0]},
         "exploiter_win_rates": {"exploiter_2048": 0.75},
+        "probes": {"exploiter_2048": 0.25},
     }
     rows = {line.split()[0]: line.split() for line in format_pool(state).splitlines()[4:]}
-    assert rows["exploiter_2048"][-1] == "75.00" and rows["rush"][-1] == "-"
+    assert rows["exploiter_2048"][-2:] == ["75.00", "25.00"] and rows["rush"][-2:] == ["-", "-"]
 
 
 def test_self_play_from_scratch_has_only_snapshots(tmp_path, capsys):
@@ -342,6 +343,32 @@ def test_the_current_self_plays_the_learners_weights_of_each_rollout(tmp_path):
     assert list(resumed.pool.results["self"]) == list(league.pool.results["self"])
 
 
+@pytest.mark.parametrize(
+    ("learner", "exploiter", "probe"),
+    [(Action.IDLE, Action.RIGHT, 0.0), (Action.RIGHT, Action.IDLE, 1.0)],
+)
+def test_probes_score_the_learners_argmax_against_each_exploiter(
+    tmp_path, learner, exploiter, probe
+):
+    """With `probe_games`, a snapshot has the learner's argmax play each pooled exploiter, and
+    PFSP weighs the exploiter by the lower of that score and its training games'."""
+    config = load_league_config("smoke")
+    config = replace(config, league=replace(config.league, probe_games=4))
+    league = LeagueCallback(config, tmp_path, {})
+    (tmp_path / "exploiters").mkdir()
+    always(exploiter, tmp_path / "exploiters" / "exploiter_0.zip")
+    league._join("exploiters", "exploiter_0", [1.0] * 8)
+    model = load_model(always(learner, tmp_path / "learner.zip"))
+    league.snapshot(model, 1024)
+    assert league.pool.probes == {"exploiter_0": probe}
+    weights = dict(zip(league.pool.members, league.pool.weights()))
+    # its training games were all won: unprobed, it would be the least drawn
+    assert weights["exploiter_0"] == (max if probe == 0.0 else min)(weights.values())
+    assert LeagueCallback(config, tmp_path, league.state()).pool.probes == league.pool.probes
+    league._leave("exploiter_0")
+    assert league.pool.probes == {}
+
+
 def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
     with pytest.raises(ConfigError, match="pfsp = 'greedy' is not allowed"):
         load_league_config("smoke", league={"pfsp": "greedy"})
@@ -366,6 +393,8 @@ def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
     for play in ("argmax", "half"):
         with pytest.raises(ConfigError, match=f"against_exploiters = '{play}' is not allowed with"):
             load_league_config("smoke", ppo={"frame": "seat"}, league={"against_exploiters": play})
+    with pytest.raises(ConfigError, match="probe_games = 3 is not allowed: an even number"):
+        load_league_config("smoke", league={"probe_games": 3})
     with pytest.raises(ConfigError, match="lead_reward = -0.005 is not allowed: in \\[0, 1\\)"):
         load_league_config("smoke", league={"lead_reward": -0.005})
     with pytest.raises(SystemExit) as stop:
