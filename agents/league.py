@@ -51,7 +51,7 @@ from vooga_env.policies import SCRIPTED
 from vooga_env.policies.batched import VectorOpponent
 from vooga_env.policies.models import frozen_batch, load_model
 from vooga_env.policies.random_styles import RandomStyles
-from vooga_env.tools.batch_match import batch_outcomes
+from vooga_env.tools.elo import SCORES
 from vooga_env.tools.files import atomic_write
 
 from . import common
@@ -76,7 +76,7 @@ from .league_population import (
     screen_leagues,
     ship_best_league,
 )
-from .league_select import PLAYS, SELECTION_FILE, league_opponents, ship_best
+from .league_select import PLAYS, SELECTION_FILE, league_opponents, outcomes_against, ship_best
 from .train import learn_and_save, load_init, policy_class, start_from
 from .train_config import PPOConfig
 
@@ -342,8 +342,7 @@ class LeagueCallback(BaseCallback):
         for slot in np.flatnonzero(self.locals["dones"]):
             winner = self.locals["infos"][slot].get("winner")
             if winner is not None:
-                score = {"win": 1.0, "draw": 0.5, "loss": 0.0}[winner]
-                self.pool.record(self.opponent.assigned[slot], score)
+                self.pool.record(self.opponent.assigned[slot], SCORES[winner])
             self.opponent.assigned[slot] = self.pool.draw(self.rng)
         self._redraw_beaten_styles()
         if self._ready_for_next():
@@ -434,14 +433,12 @@ class LeagueCallback(BaseCallback):
         games = self.league.probe_games
         if not games or not self.exploiters:
             return
-        fights = games * len(self.exploiters)
-        mixed = PoolOpponent(self.pool, fights)
-        mixed.assigned = [self.exploiters[fight % len(self.exploiters)] for fight in range(fights)]
         learner = frozen_batch(model, "learner", True, self.config.seed)
-        outcomes = np.array(batch_outcomes(learner, mixed, fights, steps, self.config.fight))
-        scored = (outcomes == "win") + 0.5 * (outcomes == "draw")
-        for offset, name in enumerate(self.exploiters):
-            self.pool.probes[name] = float(scored[offset :: len(self.exploiters)].mean())
+        outcomes = outcomes_against(
+            learner, self.pool, self.exploiters, games, steps, self.config.fight
+        )
+        for name, played in outcomes.items():
+            self.pool.probes[name] = float(np.mean([SCORES[outcome] for outcome in played]))
 
     def exploiter_argmax(self) -> bool:
         """Whether the next exploiter trains against the learner's argmax play, as

@@ -45,21 +45,29 @@ def scores(
     the share not lost. `opponents`: name -> a function of a seed giving a fresh batch player,
     so that every candidate meets the same players."""
     names = list(opponents)
-    fights = games * len(names)
     rates: dict[str, Any] = {}
     for play, deterministic in PLAYS.items():
         pool = Pool(games)
         for offset, name in enumerate(names):
             pool.add(name, opponents[name](seed + 100 + offset))
-        mixed = PoolOpponent(pool, fights)
-        mixed.assigned = [names[fight % len(names)] for fight in range(fights)]
         candidate = frozen_batch(network, "candidate", deterministic, seed)
-        outcomes = np.array(batch_outcomes(candidate, mixed, fights, seed, fight))
+        outcomes = outcomes_against(candidate, pool, names, games, seed, fight)
         rates[play] = {
-            name: float(_scored(outcomes[offset :: len(names)], name in exploiters).mean())
-            for offset, name in enumerate(names)
+            name: float(_scored(outcomes[name], name in exploiters).mean()) for name in names
         }
     return rates
+
+
+def outcomes_against(
+    player: Any, pool: Pool, names: list[str], games: int, seed: int, fight: Any
+) -> dict[str, np.ndarray]:
+    """name -> `player`'s outcomes ("win", "draw", "loss") in `games` games against that member
+    of `pool`, every member in one batch, each in both seats."""
+    fights = games * len(names)
+    mixed = PoolOpponent(pool, fights)
+    mixed.assigned = [names[index % len(names)] for index in range(fights)]
+    outcomes = np.array(batch_outcomes(player, mixed, fights, seed, fight))
+    return {name: outcomes[offset :: len(names)] for offset, name in enumerate(names)}
 
 
 def _scored(outcomes: np.ndarray, exploiter: bool) -> np.ndarray:
