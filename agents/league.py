@@ -169,15 +169,12 @@ class LeagueConfig:
         for key in ("save_steps", "window", "results_window", "exploiter_steps", "exploiters"):
             if getattr(self, key) <= 0:
                 raise ConfigError(f"{key} = {getattr(self, key)} is not allowed: must be > 0")
-        if self.probe_games < 0 or self.probe_games % 2:
-            raise ConfigError(
-                f"probe_games = {self.probe_games} is not allowed: an even number >= 0 (0: none)"
-            )
-        if self.select_games < 0 or self.select_games % 2:
-            raise ConfigError(
-                f"select_games = {self.select_games} is not allowed: an even number >= 0 "
-                "(0: ship the last model)"
-            )
+        for key, zero in (("probe_games", "none"), ("select_games", "ship the last model")):
+            games = getattr(self, key)
+            if games < 0 or games % 2:
+                raise ConfigError(
+                    f"{key} = {games} is not allowed: an even number >= 0 (0: {zero})"
+                )
         if self.exploiter_every < 0:
             raise ConfigError(f"exploiter_every = {self.exploiter_every} is not allowed: >= 0")
         if self.exploiter_parallel and not self.exploiter_every:
