@@ -19,11 +19,12 @@ learner goes on, and joins at the next mark. With `join_win_rate` the scripted f
 a time, weak to strong; with `styles`, that many random-style opponents play from the start, each
 drawing a new style once the learner beats it (vooga_env.policies.random_styles); with
 `self_play`, the learner's current weights play as one more member ("self"); with
-`probe_games`, PFSP weighs an exploiter by the lower of the learner's sampled score and its
-argmax score in probe games at every snapshot; with `lead_reward` the learner is paid a little
-on every step it leads (agents.lead_reward). With `leagues` > 1, that many leagues train side by
-side, one process each, and the best final model is shipped (agents.league_population), each
-first screened by a fresh exploiter with `screen_steps`.
+`probe_games`, PFSP weighs an exploiter (with `probe_scripted`, a scripted fighter too) by the
+lower of the learner's sampled score and its argmax score in probe games at every snapshot;
+with `lead_reward` the learner is paid a little on every step it leads (agents.lead_reward).
+With `leagues` > 1, that many leagues train side by side, one process each, and the best final
+model is shipped (agents.league_population), each first screened by a fresh exploiter with
+`screen_steps`.
 Checkpoints, `--resume`, Ctrl-C and `OUT/final.zip` work as in agents.train; the learner's Elo, the
 pool's size and the PFSP win rates are logged (TensorBoard when installed).
 """
@@ -140,6 +141,10 @@ class LeagueConfig:
     # exploiter of the pool, and PFSP weighs an exploiter by the lower of that score and the
     # training games' (played sampling): one that beats the argmax alone is drawn as hard.
     probe_games: int = 0
+    # With `probe_games`: the scripted fighters that have joined are probed too, so PFSP draws
+    # one more often while the argmax loses to it (a late learner's argmax can stand still
+    # against idle or lose shover's while its sampled play wins them all: docs/league.md).
+    probe_scripted: bool = False
     # This many random-style opponents in the pool from the start (vooga_env.policies.
     # random_styles); each draws a new style once the learner's score against it reaches
     # `styles_redraw` over a full `results_window`.
@@ -175,6 +180,11 @@ class LeagueConfig:
                 raise ConfigError(
                     f"{key} = {games} is not allowed: an even number >= 0 (0: {zero})"
                 )
+        if self.probe_scripted and not self.probe_games:
+            raise ConfigError(
+                "probe_scripted = true is not allowed with probe_games = 0: set probe_games > 0 "
+                "(even, e.g. 20), or probe_scripted = false"
+            )
         if self.exploiter_every < 0:
             raise ConfigError(f"exploiter_every = {self.exploiter_every} is not allowed: >= 0")
         if self.exploiter_parallel and not self.exploiter_every:
@@ -422,18 +432,20 @@ class LeagueCallback(BaseCallback):
         atomic_write(self.folder / "snapshots" / f"{name}.zip", model.save)
         self._join("snapshots", name)
         self.last_save = steps
-        self._probe_exploiters(model, steps)
+        self._probe(model, steps)
 
-    def _probe_exploiters(self, model: PPO, steps: int) -> None:
-        """The learner's argmax against each pooled exploiter, `probe_games` games each, as the
-        pool's probes (PFSP then draws an exploiter that beats the argmax more often)."""
+    def _probe(self, model: PPO, steps: int) -> None:
+        """The learner's argmax against each pooled exploiter (and with `probe_scripted` each
+        joined scripted fighter), `probe_games` games each, as the pool's probes (PFSP then draws
+        a member that beats the argmax more often)."""
         games = self.league.probe_games
-        if not games or not self.exploiters:
+        names = list(self.exploiters)
+        if self.league.probe_scripted:
+            names += self.league.scripted[: self.joined]
+        if not games or not names:
             return
         learner = frozen_batch(model, "learner", True, self.config.seed)
-        outcomes = outcomes_against(
-            learner, self.pool, self.exploiters, games, steps, self.config.fight
-        )
+        outcomes = outcomes_against(learner, self.pool, names, games, steps, self.config.fight)
         for name, played in outcomes.items():
             self.pool.probes[name] = float(np.mean([SCORES[outcome] for outcome in played]))
 

@@ -369,6 +369,31 @@ def test_probes_score_the_learners_argmax_against_each_exploiter(
     assert league.pool.probes == {}
 
 
+def test_probe_scripted_scores_the_argmax_against_the_joined_scripted_fighters(tmp_path):
+    """With `probe_scripted`, a snapshot probes the scripted fighters that have joined (not
+    those still waiting): an argmax that only stands still draws idle, and PFSP draws idle more
+    than its won training games alone would have it."""
+    config = load_league_config("smoke")
+    model = load_model(always(Action.IDLE, tmp_path / "learner.zip"))
+    idle_weight = {}
+    for probe_scripted in (False, True):
+        league_config = replace(
+            config.league,
+            scripted=["idle", "rush"],
+            join_win_rate=0.7,
+            probe_games=4,
+            probe_scripted=probe_scripted,
+        )
+        folder = tmp_path / str(probe_scripted)
+        league = LeagueCallback(
+            replace(config, league=league_config), folder, {"results": {"idle": [1.0] * 8}}
+        )
+        league.snapshot(model, 1024)
+        assert league.pool.probes == ({"idle": 0.5} if probe_scripted else {})
+        idle_weight[probe_scripted] = dict(zip(league.pool.members, league.pool.weights()))["idle"]
+    assert idle_weight[True] > idle_weight[False]
+
+
 def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
     with pytest.raises(ConfigError, match="pfsp = 'greedy' is not allowed"):
         load_league_config("smoke", league={"pfsp": "greedy"})
@@ -395,6 +420,8 @@ def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
             load_league_config("smoke", ppo={"frame": "seat"}, league={"against_exploiters": play})
     with pytest.raises(ConfigError, match="probe_games = 3 is not allowed: an even number"):
         load_league_config("smoke", league={"probe_games": 3})
+    with pytest.raises(ConfigError, match="probe_scripted = true is not allowed with probe_game"):
+        load_league_config("smoke", league={"probe_scripted": True})
     with pytest.raises(ConfigError, match="lead_reward = -0.005 is not allowed: in \\[0, 1\\)"):
         load_league_config("smoke", league={"lead_reward": -0.005})
     with pytest.raises(SystemExit) as stop:
