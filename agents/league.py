@@ -746,9 +746,9 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def format_pool(state: dict[str, Any]) -> str:
-    """The pool at the end: each member's recent games, the learner's score there, its Elo, and
-    for an exploiter its own win rate against the learner it trained on and (`probe_games`) the
-    learner's argmax score in the last probe."""
+    """The pool at the end: each member's recent games, the learner's score there, its Elo, for
+    an exploiter its own win rate against the learner it trained on and, for a probed member
+    (`probe_games`, `probe_scripted`), the learner's argmax score in the last probe."""
     rows = []
     own, probes = state.get("exploiter_win_rates", {}), state.get("probes", {})
     for name, results in state["results"].items():
