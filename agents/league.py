@@ -180,18 +180,17 @@ class LeagueConfig:
                 raise ConfigError(
                     f"{key} = {games} is not allowed: an even number >= 0 (0: {zero})"
                 )
-        if self.probe_scripted and not self.probe_games:
-            raise ConfigError(
-                "probe_scripted = true is not allowed with probe_games = 0: set probe_games > 0 "
-                "(even, e.g. 20), or probe_scripted = false"
-            )
         if self.exploiter_every < 0:
             raise ConfigError(f"exploiter_every = {self.exploiter_every} is not allowed: >= 0")
-        if self.exploiter_parallel and not self.exploiter_every:
-            raise ConfigError(
-                "exploiter_parallel = true is not allowed with exploiter_every = 0: set "
-                "exploiter_every > 0, or exploiter_parallel = false"
-            )
+        for flag, needed, hint in (
+            ("exploiter_parallel", "exploiter_every", ""),
+            ("probe_scripted", "probe_games", " (even, e.g. 20)"),
+        ):
+            if getattr(self, flag) and not getattr(self, needed):
+                raise ConfigError(
+                    f"{flag} = true is not allowed with {needed} = 0: set {needed} > 0{hint}, "
+                    f"or {flag} = false"
+                )
         if self.exploiter_start == "lines" and self.exploiters < 2:
             raise ConfigError(
                 f"exploiter_start = 'lines' is not allowed with exploiters = {self.exploiters}: "
