@@ -82,7 +82,7 @@ from .train import learn_and_save, load_init, policy_class, start_from
 from .train_config import PPOConfig
 
 EXPLOITER_PLAYS = ("sampled", "argmax", "alternate")
-AGAINST_EXPLOITERS = ("sampled", "argmax", "half")
+AGAINST_PLAYS = ("sampled", "argmax", "half")  # the learner's play against a kind of member
 EXPLOITER_STARTS = ("new", "last", "lines", "learner")
 
 
@@ -133,6 +133,11 @@ class LeagueConfig:
     # (as against everyone else), "argmax" (as the exploiters trained against it), or "half"
     # (argmax in the even-numbered fights, so neither play goes untrained against them).
     against_exploiters: str = "sampled"
+    # Likewise against every other member (snapshots, scripted fighters, random styles): only
+    # the sampled games train, and a late learner's argmax can walk into shover or its own
+    # snapshots for whole games while its sampled play wins with a punch now and then
+    # (docs/league.md, "A stalemate only the argmax keeps").
+    against_others: str = "sampled"
     # The learner's current weights as a member ("self", sampling, copied in at every rollout),
     # drawn by PFSP like the rest: late in a league the learner beats every other member ~100%
     # and PFSP draws them evenly; against itself it scores about 50% whatever it learns.
@@ -164,7 +169,8 @@ class LeagueConfig:
             "exploiter_play": EXPLOITER_PLAYS,
             "exploiter_start": EXPLOITER_STARTS,
             "exploiter_pool_play": tuple(PLAYS),
-            "against_exploiters": AGAINST_EXPLOITERS,
+            "against_exploiters": AGAINST_PLAYS,
+            "against_others": AGAINST_PLAYS,
         }
         for key, allowed in choices.items():
             if getattr(self, key) not in allowed:
@@ -245,12 +251,13 @@ class LeagueRunConfig:
                 f"leagues = {self.leagues} is not allowed with [league] select_games = 0: the "
                 "leagues' final models are compared over select_games games (set it > 0, e.g. 40)"
             )
-        if self.league.against_exploiters != "sampled" and self.ppo.frame != "opponent":
-            raise ConfigError(
-                f"[league] against_exploiters = {self.league.against_exploiters!r} is not allowed "
-                f"with [ppo] frame = {self.ppo.frame!r}: only the facing learner "
-                '(frame = "opponent") plays it'
-            )
+        for key in ("against_exploiters", "against_others"):
+            if getattr(self.league, key) != "sampled" and self.ppo.frame != "opponent":
+                raise ConfigError(
+                    f"[league] {key} = {getattr(self.league, key)!r} is not allowed with [ppo] "
+                    f'frame = {self.ppo.frame!r}: only the facing learner (frame = "opponent") '
+                    "plays it"
+                )
         if self.league.screen_steps and self.leagues == 1:
             raise ConfigError(
                 f"[league] screen_steps = {self.league.screen_steps} is not allowed with leagues = "
@@ -358,7 +365,7 @@ class LeagueCallback(BaseCallback):
         every = self.league.exploiter_every
         if every and self.num_timesteps - self.last_exploiter >= every:
             self._exploiter()
-        self._argmax_against_exploiters()
+        self._argmax_rows()
         self.logger.record("league/learner_elo", self.pool.ratings["learner"])
         self.logger.record("league/pool_size", len(self.pool.members))
         self.logger.record("league/scripted_joined", self.joined)
@@ -374,22 +381,23 @@ class LeagueCallback(BaseCallback):
         return True
 
     def _on_training_start(self) -> None:
-        self._argmax_against_exploiters()
+        self._argmax_rows()
 
     def _on_rollout_start(self) -> None:
         if self.current_self is not None:
             self.current_self.refresh(self.model)
 
-    def _argmax_against_exploiters(self) -> None:
-        """Have the learner take its argmax in the fights an exploiter plays (with "half", the
-        even-numbered ones), if so set."""
-        play = self.league.against_exploiters
-        if play != "sampled":
-            rows = [
-                name in self.exploiters and (play == "argmax" or row % 2 == 0)
-                for row, name in enumerate(self.opponent.assigned)
-            ]
-            self.model.policy.argmax_rows = torch.as_tensor(rows)
+    def _argmax_rows(self) -> None:
+        """Have the learner take its argmax in the fights `against_exploiters` and
+        `against_others` say ("half": the even-numbered ones), if either is set."""
+        exploiters, others = self.league.against_exploiters, self.league.against_others
+        if exploiters == others == "sampled":
+            return
+        rows = []
+        for row, name in enumerate(self.opponent.assigned):
+            play = exploiters if name in self.exploiters else others
+            rows.append(play == "argmax" or (play == "half" and row % 2 == 0))
+        self.model.policy.argmax_rows = torch.as_tensor(rows)
 
     def _redraw_beaten_styles(self) -> None:
         """A random-style member the learner beats often enough plays a new style, its record

@@ -315,10 +315,25 @@ def test_the_learner_takes_its_argmax_against_exploiters_only_when_asked(tmp_pat
     assert rows[:2] == [True, False]
     model, league = trained("half", tmp_path / "half")
     league.opponent.assigned[:4] = [league.exploiters[0]] * 3 + [league.snapshots[0]]
-    league._argmax_against_exploiters()
+    league._argmax_rows()
     assert model.policy.argmax_rows.tolist()[:4] == [True, False, True, False]
     model, _ = trained("sampled", tmp_path / "sampled")
     assert model.policy.argmax_rows is None
+
+
+def test_the_learner_takes_its_argmax_against_the_other_members_only_when_asked(tmp_path):
+    """`against_others` names the rows a snapshot or a scripted fighter plays, as
+    `against_exploiters` the exploiters' ones ("half": the even-numbered)."""
+    config = load_league_config("smoke")
+    scripted = config.league.scripted[0]
+    for play, expected in (("argmax", [True] * 3), ("half", [True, False, True])):
+        played = replace(config, league=replace(config.league, against_others=play))
+        model, league = build(played, tmp_path / play, {}, resume=False, saved=None)
+        model.learn(config.total_timesteps, callback=league)
+        assigned = [scripted, scripted, league.snapshots[0], league.exploiters[0]]
+        league.opponent.assigned[:4] = assigned
+        league._argmax_rows()
+        assert model.policy.argmax_rows.tolist()[:4] == expected + [False]
 
 
 def test_the_current_self_plays_the_learners_weights_of_each_rollout(tmp_path):
@@ -413,11 +428,12 @@ def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
         load_league_config("smoke", league={"styles": -1})
     with pytest.raises(ConfigError, match="styles_redraw = 0.0 is not allowed: in \\(0, 1\\]"):
         load_league_config("smoke", league={"styles_redraw": 0.0})
-    with pytest.raises(ConfigError, match="against_exploiters = 'best' is not allowed: one of"):
-        load_league_config("smoke", league={"against_exploiters": "best"})
-    for play in ("argmax", "half"):
-        with pytest.raises(ConfigError, match=f"against_exploiters = '{play}' is not allowed with"):
-            load_league_config("smoke", ppo={"frame": "seat"}, league={"against_exploiters": play})
+    for key in ("against_exploiters", "against_others"):
+        with pytest.raises(ConfigError, match=f"{key} = 'best' is not allowed: one of"):
+            load_league_config("smoke", league={key: "best"})
+        for play in ("argmax", "half"):
+            with pytest.raises(ConfigError, match=f"{key} = '{play}' is not allowed with"):
+                load_league_config("smoke", ppo={"frame": "seat"}, league={key: play})
     with pytest.raises(ConfigError, match="probe_games = 3 is not allowed: an even number"):
         load_league_config("smoke", league={"probe_games": 3})
     with pytest.raises(ConfigError, match="probe_scripted = true is not allowed with probe_game"):
