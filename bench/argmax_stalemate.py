@@ -118,6 +118,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--games", type=_positive, default=40)
     parser.add_argument("--seed", type=int, default=5)
     args = parser.parse_args(argv)
+    if not args.model.is_file():
+        parser.error(f"model {str(args.model)!r}: no such file (a saved PPO model, .zip)")
     for spec in args.against:
         if spec not in SCRIPTED and not Path(spec).is_file():
             parser.error(

@@ -66,7 +66,11 @@ def test_the_command_prints_every_move_against_each_opponent(tmp_path, capsys):
         assert all(sum(map(int, cell.split("/"))) == 2 for cell in results)
 
 
-def test_an_opponent_that_is_neither_a_fighter_nor_a_file_is_refused_by_name(tmp_path, capsys):
+def test_a_missing_model_or_an_unknown_opponent_is_refused_by_name(tmp_path, capsys):
+    with pytest.raises(SystemExit):
+        main([str(tmp_path / "model.zip")])
+    assert f"model '{tmp_path / 'model.zip'}': no such file" in capsys.readouterr().err
+    (tmp_path / "model.zip").write_bytes(b"")
     with pytest.raises(SystemExit):
         main([str(tmp_path / "model.zip"), "--against", "nobody"])
     error = capsys.readouterr().err
