@@ -8,10 +8,8 @@ import pytest
 
 pytest.importorskip("stable_baselines3")
 
-from stable_baselines3 import PPO  # noqa: E402
 
 from bench.argmax_stalemate import MOVES, Replaced, main  # noqa: E402
-from vooga_env.envs.sb3 import FightVecEnv  # noqa: E402
 from vooga_env.game.actions import Action  # noqa: E402
 from vooga_env.policies.models import MLPPolicy  # noqa: E402
 from vooga_env.tools.batch_match import batch_match  # noqa: E402
@@ -44,18 +42,8 @@ def test_a_walker_against_rush_hardly_stands_still():
     assert kept.still_steps / kept.steps < 0.05
 
 
-def test_the_command_prints_every_move_against_each_opponent(tmp_path, capsys):
-    model = PPO(
-        "MlpPolicy",
-        FightVecEnv(2, "small", opponent="idle"),
-        n_steps=8,
-        batch_size=16,
-        policy_kwargs={"net_arch": [8]},
-        seed=0,
-        device="cpu",
-    )
-    model.save(tmp_path / "tiny.zip")
-    argv = [str(tmp_path / "tiny.zip"), "--against", "shover", str(tmp_path / "tiny.zip")]
+def test_the_command_prints_every_move_against_each_opponent(tiny_model, capsys):
+    argv = [str(tiny_model), "--against", "shover", str(tiny_model)]
     assert main([*argv, "--games", "2"]) == 0
     lines = capsys.readouterr().out.splitlines()
     assert lines[0].split()[:3] == ["opponent", "still", "walk"]

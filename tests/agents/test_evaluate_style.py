@@ -8,27 +8,7 @@ import pytest
 
 pytest.importorskip("stable_baselines3")
 
-from stable_baselines3 import PPO  # noqa: E402
-
 from agents import evaluate  # noqa: E402
-from vooga_env.envs.sb3 import FightVecEnv  # noqa: E402
-
-
-@pytest.fixture(scope="module")
-def tiny_model(tmp_path_factory):
-    env = FightVecEnv(2, "small", opponent="idle")
-    model = PPO(
-        "MlpPolicy",
-        env,
-        n_steps=8,
-        batch_size=16,
-        policy_kwargs={"net_arch": [8]},
-        seed=0,
-        device="cpu",
-    )
-    path = tmp_path_factory.mktemp("models") / "tiny.zip"
-    model.save(path)
-    return path
 
 
 def report(capsys, *argv: str) -> dict:
