@@ -72,22 +72,17 @@ class Replaced:
         return actions if self.move is None else np.where(still, self.move, actions)
 
 
-def opponent(spec: str, seed: int) -> Any:
-    """A scripted fighter's name as is, or a saved model sampling its actions."""
-    if spec in SCRIPTED:
-        return spec
-    return frozen_batch(load_model(spec), Path(spec).stem, False, seed)
-
-
 def stalemates(model: Any, against: list[str], games: int, seed: int) -> list[dict[str, Any]]:
     """Per opponent: the standing-still share of the argmax's steps, its mean probabilities
     there, and the model's wins/draws/losses with each move of MOVES in place of the walk."""
     rows = []
     for spec in against:
         row: dict[str, Any] = {"opponent": spec, "results": {}}
+        saved = None if spec in SCRIPTED else load_model(spec)  # it samples, as snapshots do
         for move_name, move in MOVES.items():
             player = Replaced(FrozenPolicy(model, "model", True), move)
-            result = batch_match(player, opponent(spec, seed + 2), games, seed)
+            other = spec if saved is None else frozen_batch(saved, Path(spec).stem, False, seed + 2)
+            result = batch_match(player, other, games, seed)
             row["results"][move_name] = [result[key] for key in ("wins", "draws", "losses")]
             if move is None:
                 row["still_share"] = player.still_steps / player.steps
