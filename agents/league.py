@@ -82,7 +82,8 @@ from .train import learn_and_save, load_init, policy_class, start_from
 from .train_config import PPOConfig
 
 EXPLOITER_PLAYS = ("sampled", "argmax", "alternate")
-AGAINST_PLAYS = ("sampled", "argmax", "half")  # the learner's play against a kind of member
+# The learner's play against a kind of member: its argmax in every n-th fight (0: none).
+ARGMAX_EVERY = {"sampled": 0, "argmax": 1, "half": 2, "quarter": 4}
 EXPLOITER_STARTS = ("new", "last", "lines", "learner")
 
 
@@ -130,8 +131,9 @@ class LeagueConfig:
     # of its pool (agents.exploiter_loss; training only).
     exploiter_loss: float = 0.0
     # How the learner plays its training games against the exploiters of its pool: "sampled"
-    # (as against everyone else), "argmax" (as the exploiters trained against it), or "half"
-    # (argmax in the even-numbered fights, so neither play goes untrained against them).
+    # (as against everyone else), "argmax" (as the exploiters trained against it), "half"
+    # (argmax in the even-numbered fights, so neither play goes untrained against them) or
+    # "quarter" (argmax in every fourth fight).
     against_exploiters: str = "sampled"
     # Likewise against every other member (snapshots, scripted fighters, random styles): only
     # the sampled games train, and a late learner's argmax can walk into shover or its own
@@ -169,8 +171,8 @@ class LeagueConfig:
             "exploiter_play": EXPLOITER_PLAYS,
             "exploiter_start": EXPLOITER_STARTS,
             "exploiter_pool_play": tuple(PLAYS),
-            "against_exploiters": AGAINST_PLAYS,
-            "against_others": AGAINST_PLAYS,
+            "against_exploiters": tuple(ARGMAX_EVERY),
+            "against_others": tuple(ARGMAX_EVERY),
         }
         for key, allowed in choices.items():
             if getattr(self, key) not in allowed:
@@ -389,14 +391,16 @@ class LeagueCallback(BaseCallback):
 
     def _argmax_rows(self) -> None:
         """Have the learner take its argmax in the fights `against_exploiters` and
-        `against_others` say ("half": the even-numbered ones), if either is set."""
+        `against_others` say ("half": the even-numbered ones, "quarter": every fourth), if
+        either is set."""
         exploiters, others = self.league.against_exploiters, self.league.against_others
         if exploiters == others == "sampled":
             return
         rows = []
         for row, name in enumerate(self.opponent.assigned):
             play = exploiters if name in self.exploiters else others
-            rows.append(play == "argmax" or (play == "half" and row % 2 == 0))
+            every = ARGMAX_EVERY[play]
+            rows.append(every > 0 and row % every == 0)
         self.model.policy.argmax_rows = torch.as_tensor(rows)
 
     def _redraw_beaten_styles(self) -> None:

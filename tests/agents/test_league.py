@@ -323,17 +323,23 @@ def test_the_learner_takes_its_argmax_against_exploiters_only_when_asked(tmp_pat
 
 def test_the_learner_takes_its_argmax_against_the_other_members_only_when_asked(tmp_path):
     """`against_others` names the rows a snapshot or a scripted fighter plays, as
-    `against_exploiters` the exploiters' ones ("half": the even-numbered)."""
+    `against_exploiters` the exploiters' ones ("half": the even-numbered, "quarter": every
+    fourth)."""
     config = load_league_config("smoke")
     scripted = config.league.scripted[0]
-    for play, expected in (("argmax", [True] * 3), ("half", [True, False, True])):
+    plays = {
+        "argmax": [True, True, True, False, True],
+        "half": [True, False, True, False, True],
+        "quarter": [True, False, False, False, True],
+    }
+    for play, expected in plays.items():
         played = replace(config, league=replace(config.league, against_others=play))
         model, league = build(played, tmp_path / play, {}, resume=False, saved=None)
         model.learn(config.total_timesteps, callback=league)
-        assigned = [scripted, scripted, league.snapshots[0], league.exploiters[0]]
-        league.opponent.assigned[:4] = assigned
+        assigned = [scripted, scripted, league.snapshots[0], league.exploiters[0], scripted]
+        league.opponent.assigned[:5] = assigned
         league._argmax_rows()
-        assert model.policy.argmax_rows.tolist()[:4] == expected + [False]
+        assert model.policy.argmax_rows.tolist()[:5] == expected
 
 
 def test_the_current_self_plays_the_learners_weights_of_each_rollout(tmp_path):
