@@ -437,7 +437,7 @@ def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
     for key in ("against_exploiters", "against_others"):
         with pytest.raises(ConfigError, match=f"{key} = 'best' is not allowed: one of"):
             load_league_config("smoke", league={key: "best"})
-        for play in ("argmax", "half"):
+        for play in ("argmax", "half", "quarter"):
             with pytest.raises(ConfigError, match=f"{key} = '{play}' is not allowed with"):
                 load_league_config("smoke", ppo={"frame": "seat"}, league={key: play})
     with pytest.raises(ConfigError, match="probe_games = 3 is not allowed: an even number"):
