@@ -5,10 +5,8 @@ from __future__ import annotations
 
 import json
 
-import gymnasium
 import pytest
 
-import vooga_env  # noqa: F401 - registers the gymnasium ids
 from agents import evaluate, match
 
 
@@ -80,19 +78,6 @@ def test_text_report(capsys):
     assert evaluate.main(argv) == 0
     out = capsys.readouterr().out
     assert "95% CI (Wilson)" in out and "Elo" in out and "rush  <-" in out
-
-
-@pytest.fixture(scope="module")
-def tiny_model(tmp_path_factory):
-    from stable_baselines3 import PPO
-
-    env = gymnasium.make("vooga_env/Fight-v0", max_cycles=64)
-    model = PPO("MlpPolicy", env, n_steps=64, batch_size=64, n_epochs=1, seed=0, device="cpu")
-    model.learn(64)
-    path = tmp_path_factory.mktemp("models") / "tiny.zip"
-    model.save(path)
-    env.close()
-    return path
 
 
 def test_saved_model(tiny_model, capsys):
