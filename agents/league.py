@@ -69,7 +69,7 @@ from .checkpoints import (
 from .exploiter_loss import ExploiterLoss
 from .lead_reward import LeadReward
 from .league_exploiter import ExploiterJob, ExploiterWorker, train_exploiter
-from .league_pool import WEIGHTINGS, CurrentSelf, Pool, PoolOpponent
+from .league_pool import WEIGHTINGS, CurrentSelf, Pool, PoolOpponent, Slipping
 from .league_population import (
     LeagueFailed,
     league_folder,
@@ -157,6 +157,11 @@ class LeagueConfig:
     # `styles_redraw` over a full `results_window`.
     styles: int = 0
     styles_redraw: float = 0.9
+    # Above 0: each pooled snapshot's every action is replaced by a uniformly random one with
+    # this probability (`league_pool.Slipping`). Late in a league the snapshots play close to
+    # their argmax; slipping, they lead the learner off their own path (docs/league.md,
+    # "Snapshots that slip").
+    snapshot_noise: float = 0.0
     # Above 0, with `leagues` > 1: before the leagues' final models are compared, a fresh
     # exploiter trains this many steps against each one's argmax (one process a league), and
     # every final model meets every league's screen in the comparison (agents.league_population).
@@ -218,6 +223,11 @@ class LeagueConfig:
             raise ConfigError(
                 f"lead_reward = {self.lead_reward} is not allowed: in [0, 1) (0: none; "
                 "docs/league.md measured 0.005 a step)"
+            )
+        if not 0.0 <= self.snapshot_noise < 1.0:
+            raise ConfigError(
+                f"snapshot_noise = {self.snapshot_noise} is not allowed: in [0, 1) (0: none; "
+                "docs/league.md measured 0.1)"
             )
         if self.exploiter_loss < 0.0:
             raise ConfigError(
@@ -421,6 +431,8 @@ class LeagueCallback(BaseCallback):
         argmax = kind == "exploiters" and PLAYS[self.league.exploiter_pool_play]
         model = load_model(self.folder / kind / f"{name}.zip")
         player = frozen_batch(model, name, argmax, int(self.rng.integers(2**31)))
+        if kind == "snapshots" and self.league.snapshot_noise:
+            player = Slipping(player, self.league.snapshot_noise, int(self.rng.integers(2**31)))
         self.pool.add(name, player, results)
         kept = getattr(self, kind)
         kept.append(name)

@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from vooga_env.game.actions import Action
 from vooga_env.policies.models import FrozenPolicy
 from vooga_env.tools.elo import START_RATING, update
 
@@ -88,6 +89,26 @@ class Pool:
             "ratings": dict(self.ratings),
             "probes": dict(self.probes),
         }
+
+
+class Slipping:
+    """A batch member whose every action is, with probability `noise`, a uniformly random one
+    instead (its own seeded stream): a late snapshot, which plays close to its argmax, then
+    shows the learner states off its own path."""
+
+    def __init__(self, player: Any, noise: float, seed: int) -> None:
+        self.player = player
+        self.noise = noise
+        self.rng = np.random.default_rng(seed)
+
+    def act(self, observations: np.ndarray) -> np.ndarray:
+        actions = self.player.act(observations)
+        slipped = self.rng.random(len(actions)) < self.noise
+        actions[slipped] = self.rng.integers(0, len(Action), int(slipped.sum()))
+        return actions
+
+    def __repr__(self) -> str:
+        return f"Slipping({self.player!r}, {self.noise})"
 
 
 class CurrentSelf:

@@ -26,7 +26,7 @@ from agents.league_exploiter import (  # noqa: E402
     against_target,
     train_exploiter,
 )
-from agents.league_pool import Pool, PoolOpponent  # noqa: E402
+from agents.league_pool import Pool, PoolOpponent, Slipping  # noqa: E402
 from vooga_env.envs.sb3 import FightVecEnv  # noqa: E402
 from vooga_env.game.actions import Action  # noqa: E402
 from vooga_env.game.config import CONFIG_DIR, ConfigError, load_config  # noqa: E402
@@ -67,6 +67,36 @@ def test_the_pool_opponent_asks_each_member_for_its_own_fights():
     expected = scripted_actions("rush", observations[rush_rows], np.random.default_rng(7).random(3))
     assert actions[rush_rows].tolist() == expected.tolist()
     assert actions[[1, 3, 4]].tolist() == [0, 0, 0]
+
+
+def test_a_slipping_member_replaces_the_share_asked_of_its_actions_uniformly_and_by_seed():
+    observations = np.random.default_rng(1).uniform(-1, 1, (20_000, 41)).astype(np.float32)
+    own = scripted_actions("rush", observations, np.random.default_rng(7).random(20_000))
+
+    def played(noise, seed):
+        return Slipping(VectorOpponent("rush", seed=7), noise, seed).act(observations)
+
+    actions = played(0.1, 3)
+    slipped = actions != own
+    # a slip that draws rush's own action goes unseen: 0.1 x 9/10 of the rows differ
+    assert slipped.mean() == pytest.approx(0.09, abs=0.01)
+    assert np.bincount(actions[slipped], minlength=len(Action)).min() > 0
+    assert np.array_equal(played(0.1, 3), actions)  # its own seeded stream
+    assert not np.array_equal(played(0.1, 4), actions)
+    assert np.array_equal(played(0.0, 3), own)
+
+
+def test_snapshot_noise_slips_the_pooled_snapshots_only(tmp_path):
+    plain = load_league_config("smoke")
+    config = replace(plain, league=replace(plain.league, snapshot_noise=0.5))
+    model, league = build(config, tmp_path / "noisy", {}, resume=False, saved=None)
+    model.learn(config.total_timesteps, callback=league)
+    assert league.snapshots and league.exploiters
+    for name, member in league.pool.members.items():
+        assert isinstance(member, Slipping) == (name in league.snapshots), name
+    model, league = build(plain, tmp_path / "plain", {}, resume=False, saved=None)
+    model.learn(plain.total_timesteps, callback=league)
+    assert not any(isinstance(member, Slipping) for member in league.pool.members.values())
 
 
 def test_a_smoke_league_pools_snapshots_and_exploiters_and_resumes(tmp_path):
@@ -444,6 +474,9 @@ def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
         load_league_config("smoke", league={"probe_games": 3})
     with pytest.raises(ConfigError, match="probe_scripted = true is not allowed with probe_game"):
         load_league_config("smoke", league={"probe_scripted": True})
+    for noise in (-0.1, 1.0):
+        with pytest.raises(ConfigError, match=f"snapshot_noise = {noise} is not allowed: in"):
+            load_league_config("smoke", league={"snapshot_noise": noise})
     with pytest.raises(ConfigError, match="lead_reward = -0.005 is not allowed: in \\[0, 1\\)"):
         load_league_config("smoke", league={"lead_reward": -0.005})
     with pytest.raises(SystemExit) as stop:
