@@ -160,7 +160,7 @@ class LeagueConfig:
     # Above 0: each pooled snapshot's every action is replaced by a uniformly random one with
     # this probability (`league_pool.Slipping`). Late in a league the snapshots play close to
     # their argmax; slipping, they lead the learner off their own path (docs/league.md,
-    # "Snapshots that slip").
+    # "Snapshots that slip, and a memory priced").
     snapshot_noise: float = 0.0
     # Above 0, with `leagues` > 1: before the leagues' final models are compared, a fresh
     # exploiter trains this many steps against each one's argmax (one process a league), and

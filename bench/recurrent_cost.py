@@ -6,13 +6,13 @@ RecurrentPPO (an LSTM), learning on the same batched fights, side by side in one
     python -m bench.recurrent_cost --quick            # for CI (seconds)
 
 Every player of a model is stateless today, so its argmax cannot tell shover from its own past
-selves within a game (docs/league.md, "A memory of the opponent, priced"). A recurrent learner is
-the principled way to let it; this prices it. Both learn against rush in the default league's
-fights (`configs/league/default.toml`, `fights` of them) with its [ppo] settings: ours with the
-league's network and frame, the reference an LSTM as wide as the first layer with one such layer
-after it. `--n-epochs` and `--batch-size` replace the config's for both. Torch on one thread for
-both; steps/s are medians of interleaved rounds. Needs `pip install sb3-contrib` (the `dev`
-extra has it; vooga_env does not).
+selves within a game (docs/league.md, "Snapshots that slip, and a memory priced"). A recurrent
+learner is the principled way to let it; this prices it. Both learn against rush in the default
+league's fights (`configs/league/default.toml`, `fights` of them) with its [ppo] settings: ours
+with the league's network and frame, the reference an LSTM as wide as the first layer with one
+such layer after it. `--n-epochs` and `--batch-size` replace the config's for both. Torch on one
+thread for both; steps/s are medians of interleaved rounds. Needs `pip install sb3-contrib` (the
+`dev` extra has it; vooga_env does not).
 """
 
 from __future__ import annotations
