@@ -74,7 +74,7 @@ def main(argv: Sequence[str] | None = None) -> dict:
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
     args = parser.parse_args(argv)
     try:
-        import sb3_contrib  # noqa: F401
+        import sb3_contrib
     except ImportError:
         parser.error("the reference is sb3-contrib's RecurrentPPO: pip install sb3-contrib")
     config = load_league_config("default")
