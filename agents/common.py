@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import signal
 import sys
@@ -189,4 +190,22 @@ def _non_negative(text: str) -> int:
     value = int(text)
     if value < 0:
         raise argparse.ArgumentTypeError(f"must be >= 0, got {value}")
+    return value
+
+
+def budget_minutes(minutes: float | None, configured: float) -> float:
+    """A run's wall-time budget: `minutes` where given (0: none, whatever the config says), else
+    the config's."""
+    if minutes is None:
+        return configured
+    if not (math.isfinite(minutes) and minutes >= 0):
+        raise ConfigError(f"minutes = {minutes!r} is not allowed: must be >= 0 (0: no budget)")
+    return minutes
+
+
+def _minutes(text: str) -> float:
+    """A training CLI's --minutes, refused at the flag rather than after the run's set-up."""
+    value = float(text)
+    if not (math.isfinite(value) and value >= 0):
+        raise argparse.ArgumentTypeError(f"must be a number >= 0 (0: no budget), got {text!r}")
     return value

@@ -258,6 +258,8 @@ class LeagueRunConfig:
         for key in ("total_timesteps", "fights", "checkpoint_every", "leagues"):
             if getattr(self, key) <= 0:
                 raise ConfigError(f"{key} = {getattr(self, key)} is not allowed: must be > 0")
+        if self.minutes < 0:
+            raise ConfigError(f"minutes = {self.minutes} is not allowed: must be >= 0 (0: none)")
         if self.leagues > 1 and not self.league.select_games:
             raise ConfigError(
                 f"leagues = {self.leagues} is not allowed with [league] select_games = 0: the "
@@ -617,6 +619,7 @@ def train_league(
     The folder is locked and checkpointed as agents.train does it (`agents.checkpoints`); a
     fresh run refuses a folder that holds one, unless `overwrite`.
     """
+    budget = common.budget_minutes(minutes, config.minutes)
     if resume and not folder.is_dir():
         raise FileNotFoundError(f"--resume: no run folder at {folder}")
     saved = None if resume else load_init(config)
@@ -624,7 +627,7 @@ def train_league(
         return _train_leagues(config, folder, resume, progress, minutes, overwrite)
     with RunLock(folder):
         state = _prepare(folder, resume, overwrite, config)
-        return _run(config, folder, state, saved, progress, minutes or config.minutes)
+        return _run(config, folder, state, saved, progress, budget)
 
 
 def _train_leagues(
@@ -732,7 +735,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--init", help="start from this saved model's weights (overrides)")
     parser.add_argument("--resume", action="store_true", help="continue from OUT/latest.zip")
     parser.add_argument("--overwrite", action="store_true", help="start over in a used OUT")
-    parser.add_argument("--minutes", type=float, help="stop after this much wall time")
+    parser.add_argument(
+        "--minutes", type=common._minutes, help="stop after this much wall time (0: no budget)"
+    )
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     args = parser.parse_args(argv)
     try:

@@ -18,7 +18,6 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import json
-import math
 import sys
 import time
 from functools import partial
@@ -59,6 +58,7 @@ from .checkpoints import (
     save_checkpoint,
     start_fresh,
 )
+from .common import _minutes, budget_minutes
 from .train_config import PPOConfig, TrainConfig, load_train_config
 
 
@@ -165,8 +165,7 @@ def train(
     fresh run refuses a folder that holds one already, unless `overwrite` (which empties it
     first): no run's checkpoints are lost, or mixed with another's. Returns the final model's path.
     """
-    if minutes is not None and not (math.isfinite(minutes) and minutes >= 0):
-        raise ConfigError(f"minutes = {minutes!r} is not allowed: must be >= 0 (0: no budget)")
+    budget = budget_minutes(minutes, config.minutes)
     if resume and not folder.is_dir():
         raise FileNotFoundError(f"--resume: no run folder at {folder}")
     # The model to start from is checked before anything is written.
@@ -175,7 +174,7 @@ def train(
         if lock.stale_pid:
             print(f"{folder}: taking over the lock left by pid {lock.stale_pid}, which ended")
         state = _prepare(folder, resume, overwrite, config)
-        return _run(config, folder, state, saved, progress, minutes or config.minutes)
+        return _run(config, folder, state, saved, progress, budget)
 
 
 def _prepare(folder: Path, resume: bool, overwrite: bool, config: TrainConfig) -> dict[str, Any]:
@@ -328,13 +327,6 @@ def main(argv: list[str] | None = None) -> int:
         parser.error(str(error))
     print(f"trained: {final}")
     return 0
-
-
-def _minutes(text: str) -> float:
-    value = float(text)
-    if not (math.isfinite(value) and value >= 0):
-        raise argparse.ArgumentTypeError(f"must be a number >= 0 (0: no budget), got {text!r}")
-    return value
 
 
 if __name__ == "__main__":

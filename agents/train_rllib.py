@@ -29,6 +29,7 @@ from typing import Any
 
 from vooga_env.game.config import ConfigError
 
+from .common import _minutes
 from .rllib_config import RLlibTrainConfig, load_rllib_config
 
 CHECKPOINT = "checkpoint"
@@ -446,7 +447,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--address", help="join this Ray cluster (HOST:PORT, ray://..., auto)")
     parser.add_argument("--resume", action="store_true", help="continue from OUT/checkpoint")
     parser.add_argument("--overwrite", action="store_true", help="start over in a used OUT")
-    parser.add_argument("--minutes", type=float, help="stop after this much wall time")
+    parser.add_argument(
+        "--minutes", type=_minutes, help="stop after this much wall time (0: no budget)"
+    )
     parser.add_argument("--export", metavar="MODULE", help="write OUT/MODULE.npz and exit")
     return parser
 

@@ -3,6 +3,7 @@ and what is allowed, before any work starts (no run folder made, no game played)
 
 from __future__ import annotations
 
+import importlib
 import zipfile
 
 import gymnasium as gym
@@ -84,6 +85,7 @@ TRAIN_CONFIGS = [
     (SMOKE + "seed = 4294967295\n", "seed = 4294967295 is not allowed: must be in 0 .. 42949672"),
     (SMOKE + "seed = 4294967296\n", "seed must be an integer in +-4294967295, got 4294967296"),
     (SMOKE + "minutes = -1\n", "minutes = -1.0 is not allowed: must be >= 0"),
+    (SMOKE + "minutes = nan\n", "minutes must be a finite number"),
     (SMOKE + "eval_games = 0\n", "eval_games = 0 is not allowed: must be >= 1"),
     (SMOKE + 'mode = "coop"\n', "mode = 'coop' is not allowed: one of scripted, selfplay"),
     ('fight = "moon"\n', "fight = 'moon' is not allowed: unknown config 'moon'"),
@@ -219,6 +221,18 @@ def test_bad_training_flags_are_usage_errors(flags, message, tmp_path, capsys):
     out = tmp_path / "run"
     err = usage_error(train.main, ["--config", "smoke", "--out", str(out), *flags], capsys)
     assert message in err and "Traceback" not in err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize(
+    ("module", "config"), [("agents.league", "smoke"), ("agents.train_rllib", "rllib_smoke")]
+)
+@pytest.mark.parametrize("minutes", ["-1", "nan", "inf", "soon"])
+def test_every_trainer_refuses_a_bad_minutes_flag(module, config, minutes, tmp_path, capsys):
+    out = tmp_path / "run"
+    cli = importlib.import_module(module).main
+    err = usage_error(cli, ["--config", config, "--out", str(out), "--minutes", minutes], capsys)
+    assert "--minutes: " in err and repr(minutes) in err and "Traceback" not in err
     assert not out.exists()
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import replace
 
 import numpy as np
@@ -445,6 +446,14 @@ def test_probe_scripted_scores_the_argmax_against_the_joined_scripted_fighters(t
     assert idle_weight[True] > idle_weight[False]
 
 
+@pytest.mark.parametrize(("minutes", "steps"), [(None, "fewer"), (0.0, "all")])
+def test_minutes_0_lifts_the_configs_clock(tmp_path, minutes, steps):
+    config = load_league_config("smoke", minutes=1e-9, total_timesteps=1024)
+    train_league(config, tmp_path, progress=False, minutes=minutes)
+    trained = json.loads((tmp_path / "train_state.json").read_text())["num_timesteps"]
+    assert (trained == 1024) == (steps == "all") and trained > 0
+
+
 def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
     with pytest.raises(ConfigError, match="pfsp = 'greedy' is not allowed"):
         load_league_config("smoke", league={"pfsp": "greedy"})
@@ -479,6 +488,10 @@ def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
             load_league_config("smoke", league={"snapshot_noise": noise})
     with pytest.raises(ConfigError, match="lead_reward = -0.005 is not allowed: in \\[0, 1\\)"):
         load_league_config("smoke", league={"lead_reward": -0.005})
+    with pytest.raises(ConfigError, match="minutes = -1.0 is not allowed: must be >= 0"):
+        load_league_config("smoke", minutes=-1.0)
+    with pytest.raises(ConfigError, match="minutes must be a finite number"):
+        load_league_config("smoke", minutes=math.nan)
     with pytest.raises(SystemExit) as stop:
         main(["--config", "smoke", "--out", str(tmp_path), "--resume"])
     assert stop.value.code == 2 and "no checkpoint" in capsys.readouterr().err

@@ -40,6 +40,14 @@ def test_resume_continues_from_the_last_checkpoint(tmp_path):
     assert (tmp_path / "checkpoints" / "ppo_2048_steps.zip").is_file()
 
 
+@pytest.mark.parametrize(("minutes", "steps"), [(None, "fewer"), (0.0, "all")])
+def test_minutes_0_lifts_the_configs_clock(tmp_path, minutes, steps):
+    config = load_train_config("smoke", minutes=1e-9, total_timesteps=1024)
+    train(config, tmp_path, progress=False, minutes=minutes)
+    trained = json.loads((tmp_path / "train_state.json").read_text())["num_timesteps"]
+    assert (trained == 1024) == (steps == "all") and trained > 0
+
+
 @pytest.mark.parametrize("resumed", [False, True])
 def test_entropy_and_learning_rate_follow_their_schedules_through_a_resume(tmp_path, resumed):
     text = (ROOT / "configs" / "train" / "smoke.toml").read_text()
