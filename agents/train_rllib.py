@@ -29,7 +29,7 @@ from typing import Any
 
 from vooga_env.game.config import ConfigError
 
-from .common import _minutes
+from .common import _minutes, budget_minutes
 from .rllib_config import RLlibTrainConfig, load_rllib_config
 
 CHECKPOINT = "checkpoint"
@@ -348,6 +348,7 @@ def train(
     # As agents.train: small networks, and the driver's own sampling (0 env runners) spends 20x
     # longer in inference when torch's thread pool fights the learner and the env for 2 cores.
     torch.set_num_threads(1)
+    budget = budget_minutes(minutes, config.minutes)
     saved = prepare(folder, resume, overwrite)
     if saved:
         check_checkpoint(folder)
@@ -370,7 +371,7 @@ def train(
                 algo.env_runner_group.sync_weights(
                     from_worker_or_learner_group=algo.learner_group, inference_only=True
                 )
-            return _loop(algo, config, folder, league, saved, minutes, echo)
+            return _loop(algo, config, folder, league, saved, budget, echo)
         finally:
             algo.stop()
     finally:
@@ -392,13 +393,12 @@ def _loop(
     folder: Path,
     league: Any,
     saved: dict[str, Any],
-    minutes: float | None,
+    minutes: float,
     echo: bool,
 ) -> dict[str, Any]:
     """The iterations: train, score the league, snapshot, checkpoint (also on Ctrl-C / crash)."""
     state = {"iteration": saved.get("iteration", 0), "nodes": saved.get("nodes", {})}
-    budget = 60.0 * (minutes if minutes is not None else config.minutes)
-    deadline = time.monotonic() + budget if budget else float("inf")
+    deadline = time.monotonic() + 60.0 * minutes if minutes else float("inf")
 
     def snapshot() -> dict[str, Any]:
         return {**state, "league": league.to_dict(), "config": config.name}

@@ -179,6 +179,12 @@ def test_bad_config_keys_are_named():
         load_rllib_config("rllib_smoke", league={"scripted": ["rushh"]})
 
 
+def test_a_bad_minutes_is_refused_before_anything_is_written(tmp_path):
+    with pytest.raises(ConfigError, match="minutes = -1.0 is not allowed: must be >= 0"):
+        train(load_rllib_config("rllib_smoke"), tmp_path / "run", minutes=-1.0, echo=False)
+    assert not (tmp_path / "run").exists()
+
+
 @pytest.mark.slow  # ~25 s: a Ray of its own in a subprocess
 def test_ctrl_c_keeps_the_last_checkpoint(tmp_path, ray_temp_dir, no_ray_left):
     out = tmp_path / "run"
