@@ -330,14 +330,14 @@ def test_exploiters_train_against_the_learner_playing_as_asked(tmp_path, play, d
 
 def test_the_learner_takes_its_argmax_against_exploiters_only_when_asked(tmp_path):
     def trained(play, folder):
-        config = load_league_config("smoke")
+        config = load_league_config("smoke", total_timesteps=2048)
         config = replace(config, league=replace(config.league, against_exploiters=play))
         model, league = build(config, folder, {}, resume=False, saved=None)
         model.learn(config.total_timesteps, callback=league)
         return model, league
 
     model, league = trained("argmax", tmp_path / "argmax")
-    assert league.exploiters  # the smoke pools one at 2048 steps
+    assert league.exploiters  # the smoke pools one at 2048 steps, the last here
     league.opponent.assigned[:2] = [league.exploiters[0], league.snapshots[0]]
     league.locals["dones"] = np.zeros(len(league.opponent.assigned), dtype=bool)
     league._on_step()  # no fight ended: the assignments stay
@@ -356,7 +356,7 @@ def test_the_learner_takes_its_argmax_against_the_other_members_only_when_asked(
     """`against_others` names the rows a snapshot or a scripted fighter plays, as
     `against_exploiters` the exploiters' ones ("half": the even-numbered, "quarter": every
     fourth)."""
-    config = load_league_config("smoke")
+    config = load_league_config("smoke", total_timesteps=2048)  # its exploiter joins at 2048
     scripted = config.league.scripted[0]
     plays = {
         "argmax": [True, True, True, False, True],
