@@ -340,6 +340,7 @@ def train(
     echo: bool = True,
 ) -> dict[str, Any]:
     """Run (or continue) one training; returns the final state (what train_state.json holds)."""
+    budget = budget_minutes(minutes, config.minutes)  # before Ray and torch are imported
     import ray
     import torch
 
@@ -348,7 +349,6 @@ def train(
     # As agents.train: small networks, and the driver's own sampling (0 env runners) spends 20x
     # longer in inference when torch's thread pool fights the learner and the env for 2 cores.
     torch.set_num_threads(1)
-    budget = budget_minutes(minutes, config.minutes)
     saved = prepare(folder, resume, overwrite)
     if saved:
         check_checkpoint(folder)
