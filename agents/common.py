@@ -205,7 +205,9 @@ def budget_minutes(minutes: float | None, configured: float) -> float:
 
 def _minutes(text: str) -> float:
     """A training CLI's --minutes, refused at the flag rather than after the run's set-up."""
-    value = float(text)
-    if not (math.isfinite(value) and value >= 0):
-        raise argparse.ArgumentTypeError(f"must be a number >= 0 (0: no budget), got {text!r}")
-    return value
+    try:
+        return budget_minutes(float(text), 0.0)
+    except ConfigError:
+        raise argparse.ArgumentTypeError(
+            f"must be a number >= 0 (0: no budget), got {text!r}"
+        ) from None
