@@ -35,6 +35,17 @@ def one_core() -> Any:
     return threadpool_limits(limits=1, user_api="blas")
 
 
+def quiet_logger(model: Any) -> Any:
+    """The model, logging nowhere unless it has a TensorBoard folder: SB3's learn() without one
+    still makes an empty tempdir/SB3-<time> folder, one per learn (every league and exploiter
+    left one in /tmp). With a folder, SB3 sets its logger up itself, as before."""
+    if model.tensorboard_log is None:
+        from stable_baselines3.common.logger import Logger
+
+        model.set_logger(Logger(folder=None, output_formats=[]))
+    return model
+
+
 def start_without_ctrl_c(processes: list[Any]) -> None:
     """Start `processes` with SIGINT ignored (an ignored signal stays ignored in the new
     interpreter): Ctrl-C is the caller's, which stops them its own way. Only the main thread

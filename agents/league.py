@@ -588,6 +588,7 @@ def build(config: LeagueRunConfig, folder: Path, state: dict[str, Any], resume: 
         )
         if saved is not None:
             start_from(model, saved)
+    common.quiet_logger(model)
     if not league.snapshots:  # the untrained network is the first snapshot
         league.snapshot(model, model.num_timesteps)
     league.attach(opponent)

@@ -58,7 +58,7 @@ from .checkpoints import (
     save_checkpoint,
     start_fresh,
 )
-from .common import _minutes, budget_minutes
+from .common import _minutes, budget_minutes, quiet_logger
 from .train_config import PPOConfig, TrainConfig, load_train_config
 
 
@@ -206,6 +206,7 @@ def _run(
         model = build_model(config, envs, folder)
         if saved is not None:
             start_from(model, saved)
+    quiet_logger(model)
     if config.mode == "selfplay":
         opponents: Any = SelfPlayCallback(config.selfplay, folder / "snapshots", config.seed, state)
         (folder / "snapshots").mkdir(exist_ok=True)

@@ -24,7 +24,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import replace
 from typing import Any
 
-from agents.common import _positive
+from agents.common import _positive, quiet_logger
 from agents.league import _PPO_KEYS, load_league_config
 from agents.train import policy_class
 from agents.train_config import PPOConfig
@@ -41,14 +41,16 @@ def learner(kind: str, ppo: PPOConfig, fights: int, fight: str) -> Any:
         from stable_baselines3 import PPO
 
         network = {"net_arch": list(ppo.net_arch)}
-        return PPO(policy_class(ppo), envs, policy_kwargs=network, seed=0, device="cpu", **settings)
+        mlp = PPO(policy_class(ppo), envs, policy_kwargs=network, seed=0, device="cpu", **settings)
+        return quiet_logger(mlp)
     from sb3_contrib import RecurrentPPO
 
     width = ppo.net_arch[0]
     network = {"lstm_hidden_size": width, "net_arch": list(ppo.net_arch[1:])}
-    return RecurrentPPO(
+    model = RecurrentPPO(
         "MlpLstmPolicy", envs, policy_kwargs=network, seed=0, device="cpu", **settings
     )
+    return quiet_logger(model)
 
 
 def timed(model: Any, steps: int) -> Callable[[], float]:

@@ -77,6 +77,7 @@ def sb3_row(envs: int, batch: int, iterations: int) -> dict:
     from stable_baselines3 import PPO
     from stable_baselines3.common.callbacks import BaseCallback
 
+    from agents.common import quiet_logger
     from vooga_env.envs.sb3 import FightVecEnv
 
     class Phases(BaseCallback):
@@ -108,6 +109,7 @@ def sb3_row(envs: int, batch: int, iterations: int) -> dict:
         device="cpu",
         verbose=0,
     )
+    quiet_logger(model)
     model.learn(batch)  # warm-up, as the RLlib rows drop their first iteration
     phases = Phases()
     steps = batch * (iterations - 1)

@@ -190,8 +190,11 @@ def ppo_rate(make_env: Callable[[], object], n_steps: int, iterations: int) -> f
     """Timesteps per second of `PPO.learn` (default hyperparameters but n_steps)."""
     from stable_baselines3 import PPO
 
+    from agents.common import quiet_logger
+
     env = make_env()
     model = PPO("MlpPolicy", env, n_steps=n_steps, seed=0, device="cpu", verbose=0)
+    quiet_logger(model)
     total = iterations * n_steps * env.num_envs
     start = time.perf_counter()
     model.learn(total_timesteps=total)

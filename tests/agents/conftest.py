@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import tempfile
+
 import pytest
 
 
@@ -25,3 +27,14 @@ def tiny_model(tmp_path_factory):
     path = tmp_path_factory.mktemp("models") / "tiny.zip"
     model.save(path)
     return path
+
+
+@pytest.fixture
+def temp_folder(tmp_path, monkeypatch):
+    """An empty folder as the temp folder, this process's and its children's: SB3's learn()
+    without TensorBoard made an empty SB3-<time> folder there each time (thousands in /tmp)."""
+    folder = tmp_path / "temp"
+    folder.mkdir()
+    monkeypatch.setattr(tempfile, "tempdir", str(folder))
+    monkeypatch.setenv("TMPDIR", str(folder))
+    return folder

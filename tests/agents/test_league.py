@@ -100,7 +100,7 @@ def test_snapshot_noise_slips_the_pooled_snapshots_only(tmp_path):
     assert not any(isinstance(member, Slipping) for member in league.pool.members.values())
 
 
-def test_a_smoke_league_pools_snapshots_and_exploiters_and_resumes(tmp_path):
+def test_a_smoke_league_pools_snapshots_and_exploiters_and_resumes(tmp_path, temp_folder):
     config = load_league_config("smoke", total_timesteps=2048)
     train_league(config, tmp_path, progress=False)
     state = json.loads((tmp_path / "train_state.json").read_text())
@@ -116,6 +116,7 @@ def test_a_smoke_league_pools_snapshots_and_exploiters_and_resumes(tmp_path):
     assert load_model(final).num_timesteps == 4096
     resumed = json.loads((tmp_path / "train_state.json").read_text())
     assert resumed["snapshots"] == ["snapshot_3072", "snapshot_4096"]
+    assert list(temp_folder.glob("SB3-*")) == []  # nothing written outside its folder
 
 
 def test_the_pool_table_shows_each_exploiters_wins_against_its_own_target():

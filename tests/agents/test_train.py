@@ -31,13 +31,14 @@ def test_scripted_curriculum_writes_loadable_models(tmp_path):
     load_model(checkpoints[0])
 
 
-def test_resume_continues_from_the_last_checkpoint(tmp_path):
+def test_resume_continues_from_the_last_checkpoint(tmp_path, temp_folder):
     first = load_train_config("smoke", total_timesteps=1024)
     train(first, tmp_path, progress=False)
     second = load_train_config("smoke", total_timesteps=2048)
     final = train(second, tmp_path, resume=True, progress=False)
     assert load_model(final).num_timesteps == 2048
     assert (tmp_path / "checkpoints" / "ppo_2048_steps.zip").is_file()
+    assert list(temp_folder.glob("SB3-*")) == []  # nothing written outside its folder
 
 
 @pytest.mark.parametrize(("minutes", "steps"), [(None, "fewer"), (0.0, "all")])

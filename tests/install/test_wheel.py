@@ -97,6 +97,9 @@ def test_the_console_commands_run_and_write_only_where_asked(installed):
     _, _, _, work, env = installed
     folder = work / "cli"
     folder.mkdir()
+    temp = work / "temp"
+    temp.mkdir()
+    env = {**env, "TMPDIR": str(temp)}
     out = run("vooga-match", "rush", "turtle", "--episodes", "2", "--no-progress", cwd=folder,
               env=env)  # fmt: skip
     assert "rush" in out and "turtle" in out
@@ -120,6 +123,7 @@ def test_the_console_commands_run_and_write_only_where_asked(installed):
         assert (folder / "league" / league / "exploiters" / "exploiter_1024.zip").is_file()
     assert (folder / "league" / "final.zip").is_file()
     assert sorted(p.name for p in folder.iterdir()) == ["elo.json", "league", "run"]
+    assert list(temp.glob("SB3-*")) == []  # SB3's learn() makes one without a logger of ours
 
 
 @pytest.mark.parametrize(
