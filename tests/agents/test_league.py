@@ -498,27 +498,11 @@ def test_bad_league_settings_are_refused_by_name(tmp_path, capsys):
     assert stop.value.code == 2 and "no checkpoint" in capsys.readouterr().err
 
 
-def test_the_league_benchmark_measures_every_target(tmp_path):
+def test_the_league_benchmark_measures_every_target_and_by_steps_repeats(tmp_path):
+    """Once with its exploiters one at a time, once two at a time: the same result, with a row
+    for every target of issue 12."""
     from bench import league_recipe
     from vooga_env.policies import SCRIPTED
-
-    assert league_recipe.main(["--quick", "--out", str(tmp_path)]) == 0
-    result = json.loads((tmp_path / "result.json").read_text())
-    for play in ("sampled", "argmax"):
-        assert list(result["win_rates"][play]) == list(SCRIPTED)
-        assert all(row["games"] == 4 for row in result["win_rates"][play].values())
-    assert sorted(row["name"] for row in result["elo"]) == sorted(["model", *SCRIPTED])
-    attacks = result["style"]["attacks"]
-    assert set(attacks) == {"punch", "kick"} and result["style"]["games"] == 2 * len(SCRIPTED)
-    assert all(attack["landed"] <= attack["attempted"] for attack in attacks.values())
-    for play in ("sampled", "argmax"):
-        (run,) = result["exploit"][play]
-        assert run["seed"] == 3 and run["curve"][0]["steps"] == 0 and run["curve"][-1]["steps"] > 0
-
-
-def test_the_league_benchmark_by_steps_gives_the_same_result_twice(tmp_path):
-    """Once with its exploiters one at a time, once two at a time: the same result."""
-    from bench import league_recipe
 
     flags = ["--quick", "--steps", "1024", "--exploit-steps", "512"]
     results = []
@@ -532,10 +516,18 @@ def test_the_league_benchmark_by_steps_gives_the_same_result_twice(tmp_path):
                 del row["minutes"]  # the clock's, not the steps'
         results.append(result)
     assert results[0] == results[1]
-    assert 1024 <= results[0]["steps"] < 1024 + 8 * 64  # the smoke's rollout: 8 fights x 64
+    result = results[0]
+    assert 1024 <= result["steps"] < 1024 + 8 * 64  # the smoke's rollout: 8 fights x 64
     for play in ("sampled", "argmax"):
-        (run,) = results[0]["exploit"][play]
+        assert list(result["win_rates"][play]) == list(SCRIPTED)
+        assert all(row["games"] == 4 for row in result["win_rates"][play].values())
+        (run,) = result["exploit"][play]
+        assert run["seed"] == 3 and run["curve"][0]["steps"] == 0
         assert 512 <= run["curve"][-1]["steps"] < 512 + 64 * 128  # the exploiter's rollout
+    assert sorted(row["name"] for row in result["elo"]) == sorted(["model", *SCRIPTED])
+    attacks = result["style"]["attacks"]
+    assert set(attacks) == {"punch", "kick"} and result["style"]["games"] == 2 * len(SCRIPTED)
+    assert all(attack["landed"] <= attack["attempted"] for attack in attacks.values())
 
 
 @pytest.mark.parametrize(
