@@ -44,6 +44,7 @@ from .callbacks import (
     SelfPlayCallback,
     StateCheckpointCallback,
     StopWhenRequested,
+    stop_on_sigterm,
 )
 from .checkpoints import (
     STATE_FILE,
@@ -304,6 +305,7 @@ def main(argv: list[str] | None = None) -> int:
     except ConfigError as error:
         parser.error(str(error))
     folder = args.out or Path("runs") / config.name
+    stop_on_sigterm()  # `kill` and job schedulers stop it as Ctrl-C does: checkpointed
     try:
         final = train(
             config,

@@ -12,10 +12,17 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def interrupt_when(command: list[str], ready: Callable[[], bool], wait: float, stop: float) -> str:
-    """Run `command` from the checkout, send it SIGINT once `ready()` (within `wait` seconds),
-    and return its stderr; it must exit with 130 within `stop` seconds and say how to
-    `--resume`. Whatever happens, nothing it started is left running."""
+def interrupt_when(
+    command: list[str],
+    ready: Callable[[], bool],
+    wait: float,
+    stop: float,
+    signum: int = signal.SIGINT,
+) -> str:
+    """Run `command` from the checkout, send it `signum` (SIGINT: Ctrl-C; SIGTERM: `kill`, a
+    job scheduler) once `ready()` (within `wait` seconds), and return its stderr; it must exit
+    with 130 within `stop` seconds and say how to `--resume`. Whatever happens, nothing it
+    started is left running."""
     # As at a terminal: a suite started in the background (`cmd &` in a script) inherits an
     # ignored SIGINT, and Python installs no KeyboardInterrupt handler when SIGINT is ignored.
     process = subprocess.Popen(
@@ -31,7 +38,7 @@ def interrupt_when(command: list[str], ready: Callable[[], bool], wait: float, s
         while not ready():
             assert process.poll() is None and time.monotonic() < deadline
             time.sleep(0.2)
-        process.send_signal(signal.SIGINT)
+        process.send_signal(signum)
         _, stderr = process.communicate(timeout=stop)
     finally:
         left = _end_group(process.pid, grace=0 if process.poll() is None else 10)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 import math
+import signal
+import sys
 from dataclasses import replace
 
 import numpy as np
@@ -28,6 +30,7 @@ from agents.league_exploiter import (  # noqa: E402
     train_exploiter,
 )
 from agents.league_pool import Pool, PoolOpponent, Slipping  # noqa: E402
+from tests.agents.interrupt import interrupt_when  # noqa: E402
 from vooga_env.envs.sb3 import FightVecEnv  # noqa: E402
 from vooga_env.game.actions import Action  # noqa: E402
 from vooga_env.game.config import CONFIG_DIR, ConfigError, load_config  # noqa: E402
@@ -241,6 +244,26 @@ def parallel_config(tmp_path, total: int):
     text = text.replace("exploiters = 1", "exploiters = 2")
     path.write_text(text + 'exploiter_parallel = true\nexploiter_start = "last"\n')
     return load_league_config(path, total_timesteps=total)
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM], ids=["ctrl_c", "sigterm"])
+def test_a_stopped_league_stops_its_exploiter_process_too(tmp_path, signum):
+    """Ctrl-C, or SIGTERM (`kill`, a job scheduler), while an exploiter trains in its second
+    process: the league checkpoints, ends that process and exits 130 (SIGTERM used to kill the
+    league on the spot and leave its exploiter training on)."""
+    text = (CONFIG_DIR / "league" / "smoke.toml").read_text()
+    text = text.replace("exploiter_every = 2048", "exploiter_every = 1024")
+    text = text.replace("exploiter_steps = 512", "exploiter_steps = 1_000_000")  # still training
+    text = text.replace("checkpoint_every = 2048", "checkpoint_every = 1024")  # after its start
+    config, out = tmp_path / "long.toml", tmp_path / "run"
+    config.write_text(text + "exploiter_parallel = true\n")
+    command = [sys.executable, "-m", "agents.league", "--config", str(config), "--out", str(out)]
+    command += ["--steps", str(10**7), "--no-progress"]
+    ready = (out / "checkpoints" / "ppo_1024_steps.zip").is_file  # the league waits at 2048
+    interrupt_when(command, ready, wait=120, stop=60, signum=signum)
+    state = json.loads((out / "train_state.json").read_text())
+    assert state["num_timesteps"] >= 1024 and state["pending_exploiter"]["steps"] == 1024
+    assert load_model(out / "latest.zip").num_timesteps == state["num_timesteps"]
 
 
 def test_parallel_exploiters_continue_from_the_last_and_a_resume_trains_them_again(tmp_path):

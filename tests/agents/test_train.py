@@ -2,6 +2,7 @@
 
 import dataclasses
 import json
+import signal
 import sys
 from pathlib import Path
 
@@ -157,7 +158,8 @@ def test_the_seed_makes_a_run_repeatable(tmp_path, name):
     assert all(torch.equal(one[key], two[key]) for key in one)
 
 
-def test_ctrl_c_keeps_the_last_checkpoint_and_resume_finishes(tmp_path):
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM], ids=["ctrl_c", "sigterm"])
+def test_ctrl_c_or_sigterm_keeps_the_last_checkpoint_and_resume_finishes(tmp_path, signum):
     config = tmp_path / "long.toml"
     config.write_text(
         'fight = "small"\ntotal_timesteps = 400000\nn_envs = 2\ncheckpoint_every = 512\n'
@@ -175,7 +177,7 @@ def test_ctrl_c_keeps_the_last_checkpoint_and_resume_finishes(tmp_path):
         "--no-progress",
     ]
     ready = (out / "checkpoints" / "ppo_1024_steps.zip").is_file
-    interrupt_when(command, ready, wait=120, stop=60)
+    interrupt_when(command, ready, wait=120, stop=60, signum=signum)
     state = json.loads((out / "train_state.json").read_text())
     assert state["num_timesteps"] >= 1024
     assert load_model(out / "latest.zip").num_timesteps == state["num_timesteps"]
