@@ -3,8 +3,6 @@ stop asked for by a signal."""
 
 from __future__ import annotations
 
-import signal
-import threading
 from abc import abstractmethod
 from collections import deque
 from collections.abc import Sequence
@@ -19,20 +17,8 @@ from vooga_env.policies.models import FrozenPolicy, load_model
 from vooga_env.tools.elo import START_RATING, update
 
 from .checkpoints import CHECKPOINTS, atomic_write, check_finite, save_checkpoint
+from .common import STOP_REQUESTED
 from .train_config import CurriculumConfig, SelfPlayConfig
-
-STOP_REQUESTED = threading.Event()
-
-
-def stop_on_sigterm() -> None:
-    """Take SIGTERM as Ctrl-C in this process: a KeyboardInterrupt now, and again at the next
-    training step (`StopWhenRequested`) if the first one was lost."""
-    signal.signal(signal.SIGTERM, _request_stop)
-
-
-def _request_stop(signum: int, frame: Any) -> None:
-    STOP_REQUESTED.set()
-    raise KeyboardInterrupt
 
 
 class StopWhenRequested(BaseCallback):

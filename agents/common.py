@@ -1,5 +1,5 @@
 """What the command-line tools share: the fight options, policy and config look-up with clean
-errors, a progress bar, plain-text tables and JSON output."""
+errors, a progress bar, plain-text tables and JSON output, and how Ctrl-C and SIGTERM stop them."""
 
 from __future__ import annotations
 
@@ -44,6 +44,20 @@ def quiet_logger(model: Any) -> Any:
 
         model.set_logger(Logger(folder=None, output_formats=[]))
     return model
+
+
+STOP_REQUESTED = threading.Event()
+
+
+def stop_on_sigterm() -> None:
+    """Take SIGTERM as Ctrl-C in this process: a KeyboardInterrupt now, and again at the next
+    training step (`callbacks.StopWhenRequested`) if the first one was lost."""
+    signal.signal(signal.SIGTERM, request_stop)
+
+
+def request_stop(signum: int, frame: Any) -> None:
+    STOP_REQUESTED.set()
+    raise KeyboardInterrupt
 
 
 def start_without_ctrl_c(processes: list[Any]) -> None:

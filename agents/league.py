@@ -56,7 +56,6 @@ from vooga_env.tools.elo import SCORES
 from vooga_env.tools.files import atomic_write
 
 from . import common
-from .callbacks import stop_on_sigterm
 from .checkpoints import (
     STATE_FILE,
     BrokenRun,
@@ -749,7 +748,7 @@ def main(argv: list[str] | None = None) -> int:
     except ConfigError as error:
         parser.error(str(error))
     folder = args.out or Path("runs") / config.name
-    stop_on_sigterm()  # `kill` and job schedulers stop it as Ctrl-C does, exploiters included
+    common.stop_on_sigterm()  # `kill`, a job scheduler: as Ctrl-C, its exploiter ended too
     try:
         final = train_league(
             config, folder, args.resume, not args.no_progress, args.minutes, args.overwrite

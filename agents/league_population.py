@@ -29,7 +29,6 @@ from typing import Any
 import numpy as np
 
 from . import common
-from .callbacks import stop_on_sigterm
 from .checkpoints import STATE_FILE
 from .league_exploiter import ExploiterJob, ExploiterWorker
 from .league_select import league_opponents, ship_best
@@ -79,7 +78,7 @@ def run_leagues(train: Callable[..., Any], runs: Sequence[tuple], total: int, pr
 
 def _interruptible(train: Callable[..., Any], *args: Any) -> None:
     """A league's process: SIGTERM is its Ctrl-C, and Ctrl-C ends it with exit code 130."""
-    stop_on_sigterm()
+    common.stop_on_sigterm()
     try:
         train(*args)
     except KeyboardInterrupt:

@@ -44,7 +44,6 @@ from .callbacks import (
     SelfPlayCallback,
     StateCheckpointCallback,
     StopWhenRequested,
-    stop_on_sigterm,
 )
 from .checkpoints import (
     STATE_FILE,
@@ -59,7 +58,7 @@ from .checkpoints import (
     save_checkpoint,
     start_fresh,
 )
-from .common import _minutes, budget_minutes, quiet_logger
+from .common import _minutes, budget_minutes, quiet_logger, stop_on_sigterm
 from .train_config import PPOConfig, TrainConfig, load_train_config
 
 

@@ -21,6 +21,7 @@ import dataclasses
 import json
 import math
 import shutil
+import signal
 import socket
 import sys
 import time
@@ -29,7 +30,7 @@ from typing import Any
 
 from vooga_env.game.config import ConfigError
 
-from .common import _minutes, budget_minutes
+from .common import _minutes, budget_minutes, request_stop, stop_on_sigterm
 from .rllib_config import RLlibTrainConfig, load_rllib_config
 
 CHECKPOINT = "checkpoint"
@@ -101,12 +102,15 @@ def connect(address: str | None, config: RLlibTrainConfig, temp_dir: str | None 
         check_address(address)
     started = not ray.is_initialized()
     if started:
+        caller = signal.getsignal(signal.SIGTERM)
         ray.init(
             address=address or None,
             include_dashboard=False if not address else None,
             _temp_dir=temp_dir,
             logging_level="ERROR",
         )
+        if caller is request_stop:  # Ray's own handler exits without our checkpoint
+            signal.signal(signal.SIGTERM, caller)
     have = ray.cluster_resources()
     short = {kind: n for kind, n in needs(config).items() if n > have.get(kind, 0)}
     if short:
@@ -468,6 +472,7 @@ def main(argv: list[str] | None = None) -> int:
     except ConfigError as error:
         parser.error(str(error))
     folder = args.out or Path("runs") / config.name
+    stop_on_sigterm()  # `kill`, a job scheduler: as Ctrl-C (kept across ray.init)
     try:
         if args.export:
             print(f"exported: {export(folder, args.export)}")

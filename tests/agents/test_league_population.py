@@ -13,7 +13,7 @@ import pytest
 
 pytest.importorskip("stable_baselines3")
 
-from agents.callbacks import STOP_REQUESTED, stop_on_sigterm  # noqa: E402
+from agents.common import STOP_REQUESTED, stop_on_sigterm  # noqa: E402
 from agents.league import load_league_config, train_league  # noqa: E402
 from agents.league_exploiter import ExploiterJob, train_exploiter  # noqa: E402
 from agents.league_population import LeagueFailed, run_leagues  # noqa: E402

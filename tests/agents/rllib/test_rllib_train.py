@@ -185,8 +185,11 @@ def test_a_bad_minutes_is_refused_before_anything_is_written(tmp_path):
     assert not (tmp_path / "run").exists()
 
 
-@pytest.mark.slow  # ~25 s: a Ray of its own in a subprocess
-def test_ctrl_c_keeps_the_last_checkpoint(tmp_path, ray_temp_dir, no_ray_left):
+@pytest.mark.slow  # ~25 s each: a Ray of its own in a subprocess
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM], ids=["ctrl_c", "sigterm"])
+def test_ctrl_c_or_sigterm_keeps_the_last_checkpoint(tmp_path, ray_temp_dir, no_ray_left, signum):
+    """SIGTERM as from `kill` or a job scheduler: ray.init's own handler, which exits without
+    the checkpoint, gives way to the command's."""
     out = tmp_path / "run"
     command = [sys.executable, "-m", "agents.train_rllib", "--config", "rllib_smoke"]
     command += ["--out", str(out), "--iterations", "1000"]
@@ -203,7 +206,7 @@ def test_ctrl_c_keeps_the_last_checkpoint(tmp_path, ray_temp_dir, no_ray_left):
     while not (out / "train_state.json").is_file():
         assert process.poll() is None and time.monotonic() < deadline, process.stderr.read()
         time.sleep(0.2)
-    process.send_signal(signal.SIGINT)
+    process.send_signal(signum)
     _, stderr = process.communicate(timeout=60)
     assert process.returncode == 130, stderr
     assert "--resume" in stderr
