@@ -56,6 +56,7 @@ def stop_on_sigterm() -> None:
 
 
 def request_stop(signum: int, frame: Any) -> None:
+    """The handler `stop_on_sigterm` installs (the RLlib trainer keeps it over Ray's)."""
     STOP_REQUESTED.set()
     raise KeyboardInterrupt
 

@@ -119,7 +119,7 @@ def test_a_smoke_league_pools_snapshots_and_exploiters_and_resumes(tmp_path, tem
     assert load_model(final).num_timesteps == 4096
     resumed = json.loads((tmp_path / "train_state.json").read_text())
     assert resumed["snapshots"] == ["snapshot_3072", "snapshot_4096"]
-    assert list(temp_folder.glob("SB3-*")) == []  # nothing written outside its folder
+    assert list(temp_folder.glob("SB3-*")) == []  # no logger folder of SB3's left behind
 
 
 def test_the_pool_table_shows_each_exploiters_wins_against_its_own_target():

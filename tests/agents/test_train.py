@@ -39,7 +39,7 @@ def test_resume_continues_from_the_last_checkpoint(tmp_path, temp_folder):
     final = train(second, tmp_path, resume=True, progress=False)
     assert load_model(final).num_timesteps == 2048
     assert (tmp_path / "checkpoints" / "ppo_2048_steps.zip").is_file()
-    assert list(temp_folder.glob("SB3-*")) == []  # nothing written outside its folder
+    assert list(temp_folder.glob("SB3-*")) == []  # no logger folder of SB3's left behind
 
 
 @pytest.mark.parametrize(("minutes", "steps"), [(None, "fewer"), (0.0, "all")])
