@@ -12,6 +12,9 @@ import pytest
 pytest.importorskip("stable_baselines3")
 pytest.importorskip("sb3_contrib")
 
+from bench import recurrent_cost  # noqa: E402
+from tests.agents.test_bad_input import usage_error  # noqa: E402
+
 REPO = Path(__file__).resolve().parents[2]
 
 
@@ -38,21 +41,12 @@ def test_quick_run_reports_both_learners_with_the_replaced_settings():
     assert report["machine"]["sb3_contrib"]
 
 
-def refused(capsys, *args: str) -> str:
-    """The bench's usage error for `args`, in this process (a refusal needs no fresh one)."""
-    from bench import recurrent_cost
-
-    with pytest.raises(SystemExit) as stop:
-        recurrent_cost.main(list(args))
-    assert stop.value.code == 2
-    return capsys.readouterr().err
-
-
 @pytest.mark.parametrize("flag", ["--n-epochs", "--rounds", "--steps", "--batch-size"])
 def test_a_count_below_one_is_refused_by_its_flag(flag, capsys):
-    error = refused(capsys, flag, "0")
+    error = usage_error(recurrent_cost.main, [flag, "0"], capsys)  # in this process: no torch again
     assert flag in error and "0" in error
 
 
 def test_a_minibatch_of_one_is_refused_with_ppos_bound(capsys):
-    assert "batch_size = 1 is not allowed: must be >= 2" in refused(capsys, "--batch-size", "1")
+    error = usage_error(recurrent_cost.main, ["--batch-size", "1"], capsys)
+    assert "batch_size = 1 is not allowed: must be >= 2" in error
