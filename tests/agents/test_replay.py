@@ -15,8 +15,14 @@ from vooga_env.policies import make_policy
 from vooga_env.tools.match import play_episode
 from vooga_env.tools.replay import FORMAT, VERSION, Replay, ReplayError, ReplayMismatch, play_back
 
-# Spawn jitter makes the seed matter, and an override checks that the resolved config is stored.
-OVERRIDES = {"max_cycles": 150, "arena": {"spawn_jitter": 25.0}, "physics": {"gravity": 0.0025}}
+# Spawn jitter and a part-way start make the seed matter, and an override checks that the
+# resolved config is stored.
+OVERRIDES = {
+    "max_cycles": 150,
+    "arena": {"spawn_jitter": 25.0},
+    "physics": {"gravity": 0.0025},
+    "start": {"damage": 20.0, "steps": 60},
+}
 
 
 @pytest.fixture
@@ -61,6 +67,7 @@ def test_file_holds_what_it_says(game):
     assert data["format"] == FORMAT and data["version"] == VERSION
     assert data["config_name"] == "small" and data["max_cycles"] == 150
     assert data["config"]["arena"]["spawn_jitter"] == 25.0
+    assert data["config"]["start"] == {"damage": 20.0, "steps": 60}
     assert data["seed"] == 1234 and data["names"] == ["random", "rush"]
     assert data["policy_seeds"] == [7, 8]
     assert len(data["actions"]) == record.steps

@@ -47,3 +47,19 @@ def test_the_env_reports_the_outcome_string_only_at_the_end(backend):
             break
     else:
         raise AssertionError("max_cycles=30 did not end the episode")
+
+
+@pytest.mark.parametrize("backend", ["engine", "compiled"])
+def test_a_fight_started_part_way_ends_on_its_clock_and_the_healthier_wins(backend):
+    env = vooga_env.parallel_env(backend=backend, start={"damage": 60.0, "steps": 880})
+    for seed in range(4):
+        _, infos = env.reset(seed=seed)
+        health = [status["health"] for status in env.fighter_status()]
+        assert all(40.0 < value <= 100.0 for value in health) and health[0] != health[1]
+        steps_left = round(float(env.state()[-1]) * 900)  # fighter_1's time_left
+        assert 20 <= steps_left <= 900
+        for step in range(1, steps_left + 1):  # both stand still: no hit, no ring-out
+            _, _, terminated, truncated, infos = env.step({"fighter_0": 0, "fighter_1": 0})
+            assert not terminated["fighter_0"] and truncated["fighter_0"] == (step == steps_left)
+        leader = "fighter_0" if health[0] > health[1] else "fighter_1"
+        assert infos["fighter_0"]["winner"] == leader

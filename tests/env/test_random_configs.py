@@ -73,6 +73,7 @@ def configs(draw) -> dict:
     stage = draw(blocks(width, height))
     fighter_w = draw(_number(5.0, 80.0))
     fighter_h = draw(_number(10.0, 100.0))
+    health, max_cycles = draw(_number(1.0, 200.0)), draw(st.integers(20, 200))
     main = stage[0]
     spawns = [draw(_number(main["x"] - fighter_w, main["x"] + main["width"])) for _ in range(2)]
     return {
@@ -98,7 +99,7 @@ def configs(draw) -> dict:
             "crouch_height": draw(_number(1.0, fighter_h)),
             "mass": draw(_number(1.0, 1000.0)),
             "speed": draw(_number(0.0, 1.5)),
-            "health": draw(_number(1.0, 200.0)),
+            "health": health,
             "jump_speed": draw(_number(0.0, 1.5)),
             "air_jumps": draw(st.integers(0, 3)),
             "fast_fall_speed": draw(_number(0.0, 2.0)),
@@ -116,9 +117,13 @@ def configs(draw) -> dict:
             "edge": draw(_number(0.0, 5.0)),
             "time_out": draw(_number(0.0, 10.0)),
         },
-        "max_cycles": draw(st.integers(20, 200)),
+        "max_cycles": max_cycles,
         "frame_skip": draw(st.integers(1, 4)),
         "stocks": draw(st.integers(1, 3)),
+        "start": {
+            "damage": draw(st.one_of(st.just(0.0), _number(0.0, 0.99 * health))),
+            "steps": draw(st.one_of(st.just(0), st.integers(0, max_cycles - 1))),
+        },
     }
 
 

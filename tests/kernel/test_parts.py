@@ -15,6 +15,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from vooga_env.kernel import UnsupportedConfig, VectorFight
+from vooga_env.kernel.layout import OBS_HEALTH, OBS_TIME_LEFT
 from vooga_env.kernel.parts import _fsum, _next_double
 from vooga_env.kernel.rng import PCG64Streams
 
@@ -152,6 +153,21 @@ def test_random_sides_swaps_the_spawns_on_a_seeded_coin_as_the_engine_does():
         obs, _ = env.reset(seed=i)
         assert np.array_equal(first[i, 0], obs["fighter_0"])
     assert (VectorFight(16).reset(seed=0)[:, 0, 0] < 0).all()
+
+
+def test_the_start_damage_and_clock_are_drawn_as_the_engine_draws_them():
+    import vooga_env
+
+    start = {"start": {"damage": 40.0, "steps": 600}, "arena": {"spawn_jitter": 8.0}}
+    first = VectorFight(16, **start).reset(seed=0)
+    health, time_left = first[:, :, OBS_HEALTH], first[:, 0, OBS_TIME_LEFT]
+    assert ((health > 0.6) & (health <= 1.0)).all() and len(np.unique(health)) == 32
+    assert ((time_left > 0.3) & (time_left <= 1.0)).all() and len(np.unique(time_left)) > 8
+    for i in range(16):
+        env = vooga_env.parallel_env(**start, backend="engine")
+        obs, _ = env.reset(seed=i)
+        assert np.array_equal(first[i, 0], obs["fighter_0"])
+        assert np.array_equal(first[i, 1], obs["fighter_1"])
 
 
 def test_without_numba_the_batch_says_how_to_install_it():

@@ -189,6 +189,21 @@ class CollisionConfig:
 
 
 @dataclass(frozen=True)
+class StartConfig:
+    """How far into a fight an episode starts, drawn at reset from the fight's seeded stream
+    after the spawns: a fighter behind on health with the clock running down is otherwise a
+    state a policy meets only where its opponents lead it.
+
+    Each fighter starts having taken a uniform damage in [0, `damage`) (health lowered by it;
+    full health again after a ring-out), the fight a uniform number of steps in [0, `steps`]
+    into its `max_cycles`.
+    """
+
+    damage: float = 0.0
+    steps: int = 0
+
+
+@dataclass(frozen=True)
 class FightConfig:
     """Everything a fight needs; `max_cycles` env steps, each `frame_skip` physics frames."""
 
@@ -197,6 +212,7 @@ class FightConfig:
     fighter: FighterConfig = FighterConfig()
     rewards: RewardConfig = RewardConfig()
     collisions: CollisionConfig = CollisionConfig()
+    start: StartConfig = StartConfig()
     max_cycles: int = 900
     frame_skip: int = 2
     stocks: int = 1
@@ -366,6 +382,7 @@ _NON_NEGATIVE = {
         "block_knockback",
     ),
     RewardConfig: ("damage", "ring_out", "ko", "time_penalty", "edge", "time_out"),
+    StartConfig: ("damage", "steps"),
 }
 
 
@@ -394,6 +411,7 @@ def _check(config: Any, source: str, prefix: str) -> None:
                 )
     if isinstance(config, FightConfig):
         _check_arena(config, source)
+        _check_start(config, source)
 
 
 def _check_arena(config: FightConfig, source: str) -> None:
@@ -424,6 +442,20 @@ def _check_arena(config: FightConfig, source: str) -> None:
         _fail(source, "arena.spawns", arena.spawns, "exactly two spawn x positions")
     for index, x in enumerate(arena.spawns):
         _check_spawn(config, source, f"arena.spawns[{index}]", x)
+
+
+def _check_start(config: FightConfig, source: str) -> None:
+    """A fight must start with both fighters standing and some of its clock left."""
+    start = config.start
+    if start.damage >= config.fighter.health:
+        _fail(
+            source,
+            "start.damage",
+            start.damage,
+            f"must be < fighter.health ({config.fighter.health:g})",
+        )
+    if start.steps >= config.max_cycles:
+        _fail(source, "start.steps", start.steps, f"must be < max_cycles ({config.max_cycles})")
 
 
 def _check_spawn(config: FightConfig, source: str, key: str, x: float) -> None:

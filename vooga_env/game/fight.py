@@ -131,7 +131,7 @@ class Fight:
 
     def reset(self, rng: np.random.Generator) -> None:
         """Start a new fight: full stocks and health, spawns jittered (and, with `random_sides`,
-        swapped half the time) by `rng`."""
+        swapped half the time) by `rng`, then the [start] damage and clock drawn from it."""
         if not isinstance(rng, np.random.Generator):
             raise TypeError(f"rng must be a numpy Generator (np.random.default_rng), got {rng!r}")
         arena = self.config.arena
@@ -146,6 +146,12 @@ class Fight:
             self._respawn(fighter)
         self.frame = 0
         self.steps = 0
+        start = self.config.start
+        if start.damage > 0:
+            for fighter in self.fighters:
+                fighter.health -= start.damage * rng.random()
+        if start.steps > 0:
+            self.steps = int(rng.random() * (start.steps + 1))
 
     def step(self, actions: tuple[int, int]) -> StepEvents:
         """Run one env step (frame_skip physics frames) with each fighter's action repeated.

@@ -45,6 +45,7 @@ def kernel_arrays(params: FightParams) -> tuple[np.ndarray, ...]:
         r_time_out=r.time_out,
         air_jumps=f.air_jumps, frame_skip=c.frame_skip, max_cycles=c.max_cycles,
         stocks=c.stocks, random_sides=int(c.arena.random_sides),
+        start_damage=c.start.damage, start_steps=c.start.steps,
         damage=params.attack_damage, knockback=params.attack_knockback,
         growth=params.attack_growth, cos=params.attack_cos, sin=params.attack_sin,
         hitbox_w=params.hitbox_w, hitbox_h=params.hitbox_h,

@@ -79,8 +79,10 @@ FLOAT_PARAMS = (
     "head_slide", "block_damage", "block_knockback",
     # the reward
     "r_damage", "r_ring_out", "r_ko", "r_time", "edge", "r_time_out",
+    # the start
+    "start_damage",
 )  # fmt: skip
-INT_PARAMS = ("air_jumps", "frame_skip", "max_cycles", "stocks", "random_sides")
+INT_PARAMS = ("air_jumps", "frame_skip", "max_cycles", "stocks", "random_sides", "start_steps")
 STAGE_PARAMS = ("blocks", "spawns")  # (4, B): x, y, width, height; (2,) spawn x
 ATTACK_FLOATS = (
     "damage", "knockback", "growth", "cos", "sin", "hitbox_w", "hitbox_h", "hitbox_offset_y",
@@ -145,8 +147,8 @@ def params_record(fp, ip, blocks, spawns, af, ai):
     return Params(
         fp[0], fp[1], fp[2], fp[3], fp[4], fp[5], fp[6], fp[7], fp[8], fp[9], fp[10],
         fp[11], fp[12], fp[13], fp[14], fp[15], fp[16], fp[17], fp[18], fp[19], fp[20], fp[21],
-        fp[22], fp[23], fp[24], fp[25], fp[26], fp[27],
-        ip[0], ip[1], ip[2], ip[3], ip[4],
+        fp[22], fp[23], fp[24], fp[25], fp[26], fp[27], fp[28],
+        ip[0], ip[1], ip[2], ip[3], ip[4], ip[5],
         u(blocks), u(spawns),
         u(af[0]), u(af[1]), u(af[2]), u(af[3]), u(af[4]), u(af[5]), u(af[6]), u(af[7]),
         u(ai[0]), u(ai[1]), u(ai[2]), u(ai[3]), u(ai[4]),
@@ -154,7 +156,7 @@ def params_record(fp, ip, blocks, spawns, af, ai):
 
 
 # params_record reads each field by position: a field added to the lists must be added there
-assert [len(FLOAT_PARAMS), len(INT_PARAMS), len(ATTACK_FLOATS), len(ATTACK_INTS)] == [28, 5, 8, 5]
+assert [len(FLOAT_PARAMS), len(INT_PARAMS), len(ATTACK_FLOATS), len(ATTACK_INTS)] == [29, 6, 8, 5]
 
 
 @inline

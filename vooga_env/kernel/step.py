@@ -10,7 +10,15 @@ from __future__ import annotations
 import numpy as np
 
 from vooga_env.kernel import stages
-from vooga_env.kernel.layout import S_FRAME, S_POTENTIAL, S_SPAWN_TOP, S_SPAWN_X, S_STEPS, S_STOCKS
+from vooga_env.kernel.layout import (
+    S_FRAME,
+    S_HEALTH,
+    S_POTENTIAL,
+    S_SPAWN_TOP,
+    S_SPAWN_X,
+    S_STEPS,
+    S_STOCKS,
+)
 from vooga_env.kernel.parts import _next_double, inline, scratch, stage
 from vooga_env.kernel.stages import F
 
@@ -55,7 +63,7 @@ def _frame_of(p, s, e, x, actions, i):
 def _reset(p, s, rng, index):
     """`Fight.reset` of the fights `index`: jittered spawns (each fight's PCG64 stream), swapped
     on a coin toss with `random_sides`, the block under each, full stocks, both respawned, the
-    reward's edge potential."""
+    [start] damage and clock, the reward's edge potential."""
     jitter = p.spawn_jitter
     for i in index:
         for f in range(2):
@@ -76,6 +84,13 @@ def _reset(p, s, rng, index):
             stages.respawn(p, s, f, i)
         s.ct[S_FRAME, i] = 0
         s.ct[S_STEPS, i] = 0
+        if p.start_damage > 0:
+            for f in range(2):
+                draw = _next_double(rng.state_hi, rng.state_lo, rng.inc_hi, rng.inc_lo, i)
+                s.fl[S_HEALTH, f, i] -= p.start_damage * draw
+        if p.start_steps > 0:
+            draw = _next_double(rng.state_hi, rng.state_lo, rng.inc_hi, rng.inc_lo, i)
+            s.ct[S_STEPS, i] = int(draw * (p.start_steps + 1))
         s.values[S_POTENTIAL, i] = stages.edge_advantage(p, s, i)  # HitAndRingOutReward.reset
 
 
