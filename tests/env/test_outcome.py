@@ -53,7 +53,7 @@ def test_the_env_reports_the_outcome_string_only_at_the_end(backend):
 def test_a_fight_started_part_way_ends_on_its_clock_and_the_healthier_wins(backend):
     env = vooga_env.parallel_env(backend=backend, start={"damage": 60.0, "steps": 880})
     for seed in range(4):
-        _, infos = env.reset(seed=seed)
+        env.reset(seed=seed)
         health = [status["health"] for status in env.fighter_status()]
         assert all(40.0 < value <= 100.0 for value in health) and health[0] != health[1]
         steps_left = round(float(env.state()[-1]) * 900)  # fighter_1's time_left

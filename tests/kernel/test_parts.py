@@ -158,13 +158,13 @@ def test_random_sides_swaps_the_spawns_on_a_seeded_coin_as_the_engine_does():
 def test_the_start_damage_and_clock_are_drawn_as_the_engine_draws_them():
     import vooga_env
 
-    start = {"start": {"damage": 40.0, "steps": 600}, "arena": {"spawn_jitter": 8.0}}
-    first = VectorFight(16, **start).reset(seed=0)
+    overrides = {"start": {"damage": 40.0, "steps": 600}, "arena": {"spawn_jitter": 8.0}}
+    first = VectorFight(16, **overrides).reset(seed=0)
     health, time_left = first[:, :, OBS_HEALTH], first[:, 0, OBS_TIME_LEFT]
     assert ((health > 0.6) & (health <= 1.0)).all() and len(np.unique(health)) == 32
     assert ((time_left > 0.3) & (time_left <= 1.0)).all() and len(np.unique(time_left)) > 8
     for i in range(16):
-        env = vooga_env.parallel_env(**start, backend="engine")
+        env = vooga_env.parallel_env(**overrides, backend="engine")
         obs, _ = env.reset(seed=i)
         assert np.array_equal(first[i, 0], obs["fighter_0"])
         assert np.array_equal(first[i, 1], obs["fighter_1"])
