@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 
 from vooga_env.kernel import UnsupportedConfig, VectorFight
 from vooga_env.kernel.layout import OBS_HEALTH, OBS_TIME_LEFT
-from vooga_env.kernel.parts import _fsum, _next_double
+from vooga_env.kernel.parts import Streams, _fsum, _next_double
 from vooga_env.kernel.rng import PCG64Streams
 
 REPO = Path(__file__).resolve().parents[2]
@@ -66,10 +66,10 @@ def test_pcg64_streams_draw_what_the_single_env_draws():
     streams = PCG64Streams(len(seeds))
     streams.seed(np.arange(len(seeds)), seeds)
     generators = [seeding.np_random(seed)[0] for seed in seeds]
-    r = streams
+    arrays = Streams(streams.state_hi, streams.state_lo, streams.inc_hi, streams.inc_lo)
     for k in range(50):
         index = [i for i in range(len(seeds)) if (i + k) % 3]  # not every stream draws
-        got = [_next_double(r.state_hi, r.state_lo, r.inc_hi, r.inc_lo, i) for i in index]
+        got = [_next_double(arrays, i) for i in index]
         assert got == [generators[i].random() for i in index]
     assert streams.get_state(3) == generators[3].bit_generator.state
 

@@ -279,9 +279,10 @@ def _mulhi(a, b):
 
 
 @inline
-def _next_double(state_hi, state_lo, inc_hi, inc_lo, i):
-    """PCG64's next double for stream i: `Generator.random()`, the top 53 bits of the XSL-RR
-    output of the stepped LCG state (see rng.py)."""
+def _next_double(rng, i):
+    """PCG64's next double for stream i of `rng` (Streams): `Generator.random()`, the top 53 bits
+    of the XSL-RR output of the stepped LCG state (see rng.py)."""
+    state_hi, state_lo, inc_hi, inc_lo = rng.state_hi, rng.state_lo, rng.inc_hi, rng.inc_lo
     hi, lo = state_hi[i], state_lo[i]
     mul_hi, mul_lo = np.uint64(MUL_HI), np.uint64(MUL_LO)
     new_lo = lo * mul_lo

@@ -68,12 +68,12 @@ def _reset(p, s, rng, index):
     for i in index:
         for f in range(2):
             if jitter > 0:
-                draw = _next_double(rng.state_hi, rng.state_lo, rng.inc_hi, rng.inc_lo, i)
+                draw = _next_double(rng, i)
                 s.fl[S_SPAWN_X, f, i] = p.spawns[f] + (-jitter + (jitter - -jitter) * draw)
             else:
                 s.fl[S_SPAWN_X, f, i] = p.spawns[f] + 0.0
         if p.random_sides:
-            toss = _next_double(rng.state_hi, rng.state_lo, rng.inc_hi, rng.inc_lo, i)
+            toss = _next_double(rng, i)
             if toss < 0.5:
                 left, right = s.fl[S_SPAWN_X, 0, i], s.fl[S_SPAWN_X, 1, i]
                 s.fl[S_SPAWN_X, 0, i], s.fl[S_SPAWN_X, 1, i] = right, left
@@ -86,10 +86,10 @@ def _reset(p, s, rng, index):
         s.ct[S_STEPS, i] = 0
         if p.start_damage > 0:
             for f in range(2):
-                draw = _next_double(rng.state_hi, rng.state_lo, rng.inc_hi, rng.inc_lo, i)
+                draw = _next_double(rng, i)
                 s.fl[S_HEALTH, f, i] -= p.start_damage * draw
         if p.start_steps > 0:
-            draw = _next_double(rng.state_hi, rng.state_lo, rng.inc_hi, rng.inc_lo, i)
+            draw = _next_double(rng, i)
             s.ct[S_STEPS, i] = int(draw * (p.start_steps + 1))
         s.values[S_POTENTIAL, i] = stages.edge_advantage(p, s, i)  # HitAndRingOutReward.reset
 
