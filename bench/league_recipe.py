@@ -28,12 +28,12 @@ import argparse
 import json
 import math
 import multiprocessing
+import sys
 import time
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
-from agents.common import _non_negative, _positive, one_core
+from agents.common import _non_negative, _positive, one_core, stop_on_sigterm
 from agents.exploit import _even, _positive_float, exploit
 from agents.league import load_league_config, train_league
 from agents.league_population import league_folder
@@ -93,17 +93,19 @@ def exploit_curves(model: Path, fight: Any, args: argparse.Namespace) -> dict[st
     """play -> one exploiter's curve a seed, trained `--exploit-jobs` at a time (one process and
     one core each, as docs/league.md measures them: two at a time on this 2-core machine)."""
     context = multiprocessing.get_context("spawn")  # no copy of torch's threads
-    with ProcessPoolExecutor(args.exploit_jobs, mp_context=context, initializer=one_core) as pool:
-        futures = {
+    # A Pool's exit terminates its workers, a Ctrl-C's or SIGTERM's too (an executor's waits for
+    # them: SIGTERM left the exploiters training on).
+    with context.Pool(args.exploit_jobs, initializer=one_core) as pool:
+        runs = {
             play: [
-                (seed, pool.submit(exploit_curve, model, fight, not deterministic, seed, args))
+                (seed, pool.apply_async(exploit_curve, (model, fight, not det, seed, args)))
                 for seed in args.exploit_seeds
             ]
-            for play, deterministic in PLAYS.items()
+            for play, det in PLAYS.items()
         }
         return {
-            play: [{"seed": seed, "curve": future.result()} for seed, future in runs]
-            for play, runs in futures.items()
+            play: [{"seed": seed, "curve": curve.get()} for seed, curve in seeds]
+            for play, seeds in runs.items()
         }
 
 
@@ -156,6 +158,19 @@ def report(result: dict[str, Any]) -> str:
                 f"sampled/argmax): {marks}"
             )
     return "\n".join(lines)
+
+
+def train(config: Any, args: argparse.Namespace, result: dict[str, Any]) -> Path:
+    """Train the league into `args.out`, noting its minutes, steps and choosing in `result`."""
+    start = time.monotonic()
+    model = train_league(config, args.out, progress=not args.quick, minutes=args.minutes,
+                         overwrite=True)  # fmt: skip
+    result["train_minutes"] = (time.monotonic() - start) / 60.0
+    if (args.out / SELECTION_FILE).is_file():
+        result["selection"] = json.loads((args.out / SELECTION_FILE).read_text())
+    runs = [league_folder(args.out, index) for index in range(config.leagues)]
+    result["steps"] = [_steps(run) for run in runs] if config.leagues > 1 else _steps(args.out)
+    return model
 
 
 def _steps(run: Path) -> int:
@@ -216,20 +231,29 @@ def main(argv: list[str] | None = None) -> int:
         args.config, seed=args.seed, total_timesteps=args.steps, minutes=clock
     )
     one_core()  # as agents.league and agents.exploit run: one core each, two runs at a time
+    stop_on_sigterm()  # `kill`, a job scheduler: as Ctrl-C, the exploiters' processes ended too
     args.out = args.out or Path("runs/recipe") / f"league_{args.config}"
     result: dict[str, Any] = {"config": config.name}
     model = args.model
     if model is None:
-        start = time.monotonic()
-        model = train_league(config, args.out, progress=not args.quick, minutes=args.minutes,
-                             overwrite=True)  # fmt: skip
-        result["train_minutes"] = (time.monotonic() - start) / 60.0
-        if (args.out / SELECTION_FILE).is_file():
-            result["selection"] = json.loads((args.out / SELECTION_FILE).read_text())
-        runs = [league_folder(args.out, index) for index in range(config.leagues)]
-        result["steps"] = [_steps(run) for run in runs] if config.leagues > 1 else _steps(args.out)
+        try:
+            model = train(config, args, result)
+        except KeyboardInterrupt:
+            steps = f" --steps {args.steps}" if args.steps else ""
+            print(
+                f"\ninterrupted: the league's last checkpoint is in {args.out}; continue it with "
+                f"`python -m agents.league --config {args.config} --seed {config.seed}{steps} "
+                f"--resume --out {args.out}` and measure its final.zip with --model",
+                file=sys.stderr,
+            )
+            return 130
     args.out.mkdir(parents=True, exist_ok=True)
-    result.update(measure(model, args))
+    try:
+        result.update(measure(model, args))
+    except KeyboardInterrupt:
+        print(f"\ninterrupted: nothing measured; measure {model} again with --model",
+              file=sys.stderr)  # fmt: skip
+        return 130
     atomic_write_text(args.out / "result.json", json.dumps(result, indent=2))
     print(report(result))
     print(f"wrote {args.out / 'result.json'}")

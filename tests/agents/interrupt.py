@@ -18,11 +18,12 @@ def interrupt_when(
     wait: float,
     stop: float,
     signum: int = signal.SIGINT,
+    says: str = "--resume",
 ) -> str:
     """Run `command` from the checkout, send it `signum` (SIGINT: Ctrl-C; SIGTERM: `kill`, a
     job scheduler) once `ready()` (within `wait` seconds), and return its stderr; it must exit
-    with 130 within `stop` seconds and say how to `--resume`. Whatever happens, nothing it
-    started is left running."""
+    with 130 within `stop` seconds and say what to do next (`says`: how to `--resume`).
+    Whatever happens, nothing it started is left running."""
     # As at a terminal: a suite started in the background (`cmd &` in a script) inherits an
     # ignored SIGINT, and Python installs no KeyboardInterrupt handler when SIGINT is ignored.
     process = subprocess.Popen(
@@ -45,8 +46,23 @@ def interrupt_when(
         process.wait()
     assert not left, f"processes of {command} ran on after it exited"
     assert process.returncode == 130, stderr
-    assert "--resume" in stderr
+    assert says in stderr
     return stderr
+
+
+def group_size(marker: str) -> int:
+    """How many processes share the process group of the one with `marker` in its command line
+    (0 if none has): the processes a command started, as Linux's /proc lists them."""
+    groups, leaders = [], []
+    for proc in Path("/proc").glob("[0-9]*"):
+        try:
+            command, stat = (proc / "cmdline").read_bytes(), (proc / "stat").read_text()
+        except OSError:  # ended meanwhile
+            continue
+        groups.append(stat.rsplit(")", 1)[1].split()[2])  # after the name: state, ppid, pgrp
+        if marker.encode() in command:
+            leaders.append(proc.name)
+    return groups.count(leaders[0]) if len(leaders) == 1 else 0
 
 
 def _end_group(group: int, grace: float) -> bool:

@@ -30,7 +30,7 @@ from agents.league_exploiter import (  # noqa: E402
     train_exploiter,
 )
 from agents.league_pool import Pool, PoolOpponent, Slipping  # noqa: E402
-from tests.agents.interrupt import interrupt_when  # noqa: E402
+from tests.agents.interrupt import group_size, interrupt_when  # noqa: E402
 from vooga_env.envs.sb3 import FightVecEnv  # noqa: E402
 from vooga_env.game.actions import Action  # noqa: E402
 from vooga_env.game.config import CONFIG_DIR, ConfigError, load_config  # noqa: E402
@@ -572,3 +572,27 @@ def test_the_league_benchmark_refuses_bad_flags_by_name(flag, message, capsys):
     with pytest.raises(SystemExit) as stop:
         league_recipe.main(flag)
     assert stop.value.code == 2 and message in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("phase", ["training", "measuring"])
+def test_a_stopped_league_benchmark_leaves_nothing_running(tmp_path, tiny_model, phase):
+    """SIGTERM (`kill`, a job scheduler) while the league's exploiter trains in its second
+    process, or while the measuring exploiters train in theirs: exit 130, nothing left running,
+    and what to do next (SIGTERM killed the benchmark on the spot and left them training on)."""
+    out = tmp_path / "run"
+    command = [sys.executable, "-m", "bench.league_recipe", "--out", str(out)]
+    if phase == "training":
+        text = (CONFIG_DIR / "league" / "smoke.toml").read_text()
+        text = text.replace("exploiter_every = 2048", "exploiter_every = 1024")
+        text = text.replace("exploiter_steps = 512", "exploiter_steps = 1_000_000")
+        text = text.replace("checkpoint_every = 2048", "checkpoint_every = 1024")
+        config = tmp_path / "long.toml"
+        config.write_text(text + "exploiter_parallel = true\n")
+        command += ["--config", str(config), "--steps", str(10**7)]
+        ready, says = (out / "checkpoints" / "ppo_1024_steps.zip").is_file, "--resume"
+    else:
+        command += ["--model", str(tiny_model), "--games", "2", "--elo-games", "1"]
+        command += ["--style-games", "1", "--exploit-steps", str(10**9), "--exploit-games", "2"]
+        ready, says = lambda: group_size(str(out)) >= 3, "again with --model"  # its 2 exploiters
+    interrupt_when(command, ready, wait=180, stop=60, signum=signal.SIGTERM, says=says)
+    assert not (out / "result.json").exists()
