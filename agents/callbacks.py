@@ -22,7 +22,7 @@ from .train_config import CurriculumConfig, SelfPlayConfig
 
 
 class StopWhenRequested(BaseCallback):
-    """Raise KeyboardInterrupt at the next step once a stop was requested (`stop_on_sigterm`).
+    """Raise KeyboardInterrupt at the next step once a stop was requested (`stop_on_signals`).
 
     A signal handler's exception is raised wherever the interpreter happens to be, and numpy
     drops one raised in the `__array_function__` lookup it makes on an argument's type (an enum

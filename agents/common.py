@@ -49,14 +49,18 @@ def quiet_logger(model: Any) -> Any:
 STOP_REQUESTED = threading.Event()
 
 
-def stop_on_sigterm() -> None:
-    """Take SIGTERM as Ctrl-C in this process: a KeyboardInterrupt now, and again at the next
-    training step (`callbacks.StopWhenRequested`) if the first one was lost."""
+def stop_on_signals() -> None:
+    """Take SIGTERM as Ctrl-C in this process, and Ctrl-C itself unless it is ignored here (a
+    league's process leaves it to its parent): a KeyboardInterrupt now, and again at the next
+    training step (`callbacks.StopWhenRequested`) if the first one was lost. Python's own Ctrl-C
+    raises once only, where numpy may drop it as it dropped a SIGTERM's."""
     signal.signal(signal.SIGTERM, request_stop)
+    if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+        signal.signal(signal.SIGINT, request_stop)
 
 
 def request_stop(signum: int, frame: Any) -> None:
-    """The handler `stop_on_sigterm` installs (the RLlib trainer keeps it over Ray's)."""
+    """The handler `stop_on_signals` installs (the RLlib trainer keeps it over Ray's SIGTERM)."""
     STOP_REQUESTED.set()
     raise KeyboardInterrupt
 

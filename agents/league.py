@@ -748,7 +748,7 @@ def main(argv: list[str] | None = None) -> int:
     except ConfigError as error:
         parser.error(str(error))
     folder = args.out or Path("runs") / config.name
-    common.stop_on_sigterm()  # `kill`, a job scheduler: as Ctrl-C, its exploiter ended too
+    common.stop_on_signals()  # `kill`, a job scheduler: as Ctrl-C, its exploiter ended too
     try:
         final = train_league(
             config, folder, args.resume, not args.no_progress, args.minutes, args.overwrite

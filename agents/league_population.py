@@ -78,7 +78,7 @@ def run_leagues(train: Callable[..., Any], runs: Sequence[tuple], total: int, pr
 
 def _interruptible(train: Callable[..., Any], *args: Any) -> None:
     """A league's process: SIGTERM is its Ctrl-C, and Ctrl-C ends it with exit code 130."""
-    common.stop_on_sigterm()
+    common.stop_on_signals()
     try:
         train(*args)
     except KeyboardInterrupt:

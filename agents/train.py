@@ -58,7 +58,7 @@ from .checkpoints import (
     save_checkpoint,
     start_fresh,
 )
-from .common import _minutes, budget_minutes, quiet_logger, stop_on_sigterm
+from .common import _minutes, budget_minutes, quiet_logger, stop_on_signals
 from .train_config import PPOConfig, TrainConfig, load_train_config
 
 
@@ -304,7 +304,7 @@ def main(argv: list[str] | None = None) -> int:
     except ConfigError as error:
         parser.error(str(error))
     folder = args.out or Path("runs") / config.name
-    stop_on_sigterm()  # `kill` and job schedulers stop it as Ctrl-C does: checkpointed
+    stop_on_signals()  # `kill` and job schedulers stop it as Ctrl-C does: checkpointed
     try:
         final = train(
             config,

@@ -30,7 +30,7 @@ from typing import Any
 
 from vooga_env.game.config import ConfigError
 
-from .common import _minutes, budget_minutes, request_stop, stop_on_sigterm
+from .common import _minutes, budget_minutes, request_stop, stop_on_signals
 from .rllib_config import RLlibTrainConfig, load_rllib_config
 
 CHECKPOINT = "checkpoint"
@@ -472,7 +472,7 @@ def main(argv: list[str] | None = None) -> int:
     except ConfigError as error:
         parser.error(str(error))
     folder = args.out or Path("runs") / config.name
-    stop_on_sigterm()  # `kill`, a job scheduler: as Ctrl-C (kept across ray.init)
+    stop_on_signals()  # `kill`, a job scheduler: as Ctrl-C (kept across ray.init)
     try:
         if args.export:
             print(f"exported: {export(folder, args.export)}")

@@ -33,7 +33,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from agents.common import _non_negative, _positive, one_core, stop_on_sigterm
+from agents.common import _non_negative, _positive, one_core, stop_on_signals
 from agents.exploit import _even, _positive_float, exploit
 from agents.league import load_league_config, train_league
 from agents.league_population import league_folder
@@ -231,7 +231,7 @@ def main(argv: list[str] | None = None) -> int:
         args.config, seed=args.seed, total_timesteps=args.steps, minutes=clock
     )
     one_core()  # as agents.league and agents.exploit run: one core each, two runs at a time
-    stop_on_sigterm()  # `kill`, a job scheduler: as Ctrl-C, the exploiters' processes ended too
+    stop_on_signals()  # `kill`, a job scheduler: as Ctrl-C, the exploiters' processes ended too
     args.out = args.out or Path("runs/recipe") / f"league_{args.config}"
     result: dict[str, Any] = {"config": config.name}
     model = args.model

@@ -13,7 +13,7 @@ import pytest
 
 pytest.importorskip("stable_baselines3")
 
-from agents.common import STOP_REQUESTED, stop_on_sigterm  # noqa: E402
+from agents.common import STOP_REQUESTED, stop_on_signals  # noqa: E402
 from agents.league import load_league_config, train_league  # noqa: E402
 from agents.league_exploiter import ExploiterJob, train_exploiter  # noqa: E402
 from agents.league_population import LeagueFailed, run_leagues  # noqa: E402
@@ -100,16 +100,33 @@ def test_a_lost_interrupt_still_stops_an_exploiter(tmp_path):
     assert not (tmp_path / "e.zip").exists()
 
 
-def test_sigterm_is_a_ctrl_c_that_asks_training_to_stop():
-    previous = signal.getsignal(signal.SIGTERM)
-    stop_on_sigterm()
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT], ids=["sigterm", "ctrl_c"])
+def test_sigterm_and_ctrl_c_raise_and_ask_training_to_stop(signum):
+    """Both raise KeyboardInterrupt and set the flag `StopWhenRequested` reads at the next step
+    (Python's own Ctrl-C raised once only, where numpy may drop it)."""
+    previous = {s: signal.getsignal(s) for s in (signal.SIGTERM, signal.SIGINT)}
+    signal.signal(signal.SIGINT, signal.default_int_handler)  # as in a terminal
+    stop_on_signals()
     try:
         with pytest.raises(KeyboardInterrupt):
-            signal.raise_signal(signal.SIGTERM)
+            signal.raise_signal(signum)
         assert STOP_REQUESTED.is_set()
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        for s, handler in previous.items():
+            signal.signal(s, handler)
         STOP_REQUESTED.clear()
+
+
+def test_an_ignored_ctrl_c_stays_ignored():
+    """A league's process ignores Ctrl-C (its parent stops it with SIGTERM, once)."""
+    previous = {s: signal.getsignal(s) for s in (signal.SIGTERM, signal.SIGINT)}
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    stop_on_signals()
+    try:
+        assert signal.getsignal(signal.SIGINT) is signal.SIG_IGN
+    finally:
+        for s, handler in previous.items():
+            signal.signal(s, handler)
 
 
 def test_a_failed_league_process_is_an_error_that_names_its_folder(tmp_path):
