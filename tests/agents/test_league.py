@@ -593,6 +593,6 @@ def test_a_stopped_league_benchmark_leaves_nothing_running(tmp_path, tiny_model,
     else:
         command += ["--model", str(tiny_model), "--games", "2", "--elo-games", "1"]
         command += ["--style-games", "1", "--exploit-steps", str(10**9), "--exploit-games", "2"]
-        ready, says = lambda: group_size(str(out)) >= 3, "again with --model"  # its 2 exploiters
+        ready, says = lambda: group_size(str(out)) >= 3, "again with --model"  # its Pool started
     interrupt_when(command, ready, wait=180, stop=60, signum=signal.SIGTERM, says=says)
     assert not (out / "result.json").exists()
