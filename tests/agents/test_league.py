@@ -246,17 +246,24 @@ def parallel_config(tmp_path, total: int):
     return load_league_config(path, total_timesteps=total)
 
 
+def long_exploiter_config(tmp_path):
+    """The smoke league with its first exploiter started at 1024 steps, in its second process,
+    and still training when the league checkpoints there (the league waits for it at 2048)."""
+    text = (CONFIG_DIR / "league" / "smoke.toml").read_text()
+    text = text.replace("exploiter_every = 2048", "exploiter_every = 1024")
+    text = text.replace("exploiter_steps = 512", "exploiter_steps = 1_000_000")  # still training
+    text = text.replace("checkpoint_every = 2048", "checkpoint_every = 1024")  # after its start
+    path = tmp_path / "long.toml"
+    path.write_text(text + "exploiter_parallel = true\n")
+    return path
+
+
 @pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM], ids=["ctrl_c", "sigterm"])
 def test_a_stopped_league_stops_its_exploiter_process_too(tmp_path, signum):
     """Ctrl-C, or SIGTERM (`kill`, a job scheduler), while an exploiter trains in its second
     process: the league checkpoints, ends that process and exits 130 (SIGTERM used to kill the
     league on the spot and leave its exploiter training on)."""
-    text = (CONFIG_DIR / "league" / "smoke.toml").read_text()
-    text = text.replace("exploiter_every = 2048", "exploiter_every = 1024")
-    text = text.replace("exploiter_steps = 512", "exploiter_steps = 1_000_000")  # still training
-    text = text.replace("checkpoint_every = 2048", "checkpoint_every = 1024")  # after its start
-    config, out = tmp_path / "long.toml", tmp_path / "run"
-    config.write_text(text + "exploiter_parallel = true\n")
+    config, out = long_exploiter_config(tmp_path), tmp_path / "run"
     command = [sys.executable, "-m", "agents.league", "--config", str(config), "--out", str(out)]
     command += ["--steps", str(10**7), "--no-progress"]
     ready = (out / "checkpoints" / "ppo_1024_steps.zip").is_file  # the league waits at 2048
@@ -582,13 +589,7 @@ def test_a_stopped_league_benchmark_leaves_nothing_running(tmp_path, tiny_model,
     out = tmp_path / "run"
     command = [sys.executable, "-m", "bench.league_recipe", "--out", str(out)]
     if phase == "training":
-        text = (CONFIG_DIR / "league" / "smoke.toml").read_text()
-        text = text.replace("exploiter_every = 2048", "exploiter_every = 1024")
-        text = text.replace("exploiter_steps = 512", "exploiter_steps = 1_000_000")
-        text = text.replace("checkpoint_every = 2048", "checkpoint_every = 1024")
-        config = tmp_path / "long.toml"
-        config.write_text(text + "exploiter_parallel = true\n")
-        command += ["--config", str(config), "--steps", str(10**7)]
+        command += ["--config", str(long_exploiter_config(tmp_path)), "--steps", str(10**7)]
         ready, says = (out / "checkpoints" / "ppo_1024_steps.zip").is_file, "--resume"
     else:
         command += ["--model", str(tiny_model), "--games", "2", "--elo-games", "1"]

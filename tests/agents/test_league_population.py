@@ -100,33 +100,35 @@ def test_a_lost_interrupt_still_stops_an_exploiter(tmp_path):
     assert not (tmp_path / "e.zip").exists()
 
 
-@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT], ids=["sigterm", "ctrl_c"])
-def test_sigterm_and_ctrl_c_raise_and_ask_training_to_stop(signum):
-    """Both raise KeyboardInterrupt and set the flag `StopWhenRequested` reads at the next step
-    (Python's own Ctrl-C raised once only, where numpy may drop it)."""
+@contextmanager
+def stopping_on_signals(ctrl_c: object):
+    """`stop_on_signals` called where Ctrl-C's handler was `ctrl_c`; this process's handlers and
+    the stop flag are put back afterwards."""
     previous = {s: signal.getsignal(s) for s in (signal.SIGTERM, signal.SIGINT)}
-    signal.signal(signal.SIGINT, signal.default_int_handler)  # as in a terminal
-    stop_on_signals()
+    signal.signal(signal.SIGINT, ctrl_c)
     try:
-        with pytest.raises(KeyboardInterrupt):
-            signal.raise_signal(signum)
-        assert STOP_REQUESTED.is_set()
+        stop_on_signals()
+        yield
     finally:
         for s, handler in previous.items():
             signal.signal(s, handler)
         STOP_REQUESTED.clear()
 
 
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT], ids=["sigterm", "ctrl_c"])
+def test_sigterm_and_ctrl_c_raise_and_ask_training_to_stop(signum):
+    """Both raise KeyboardInterrupt and set the flag `StopWhenRequested` reads at the next step
+    (Python's own Ctrl-C raised once only, where numpy may drop it)."""
+    with stopping_on_signals(signal.default_int_handler):  # Ctrl-C as in a terminal
+        with pytest.raises(KeyboardInterrupt):
+            signal.raise_signal(signum)
+        assert STOP_REQUESTED.is_set()
+
+
 def test_an_ignored_ctrl_c_stays_ignored():
     """A league's process ignores Ctrl-C (its parent stops it with SIGTERM, once)."""
-    previous = {s: signal.getsignal(s) for s in (signal.SIGTERM, signal.SIGINT)}
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    stop_on_signals()
-    try:
+    with stopping_on_signals(signal.SIG_IGN):
         assert signal.getsignal(signal.SIGINT) is signal.SIG_IGN
-    finally:
-        for s, handler in previous.items():
-            signal.signal(s, handler)
 
 
 def test_a_failed_league_process_is_an_error_that_names_its_folder(tmp_path):
